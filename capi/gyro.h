@@ -1,0 +1,150 @@
+/* gyro: deterministic, SIMD, data-oriented game physics. The flat C ABI (C99).
+ *
+ * Conventions
+ * - Every fallible call returns gyro_status (GYRO_OK = 0); results go through out
+ *   pointers. On failure nothing is written, and gyro_last_error() tells why (per thread).
+ * - Counts are int32_t: a negative count is reported (GYRO_STATUS_INVALID_COUNT).
+ * - Arrays are structure-of-arrays views: one pointer per component, owned by the caller,
+ *   never copied or kept after the call returns.
+ * - Results are bit-identical for every SIMD level and thread count, on x86-64 and
+ *   aarch64, with g++ or clang++. The SIMD level and threads only change speed.
+ * - Booleans are uint32_t, enums are int32_t or uint32_t typedefs, structs are plain data.
+ * - No call keeps a pointer you pass; separate worlds may be used from separate threads.
+ */
+#ifndef GYRO_H
+#define GYRO_H
+
+#include <stdint.h>
+
+#if defined(_WIN32)
+#if defined(GYRO_BUILDING)
+#define GYRO_API __declspec(dllexport)
+#else
+#define GYRO_API
+#endif
+#else
+#define GYRO_API __attribute__((visibility("default")))
+#endif
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ------------------------------------------------------------------ version, features */
+
+/** ABI version this header describes: (major << 16) | minor. A library with the same
+ *  major and a minor >= the header's is compatible. */
+#define GYRO_ABI_VERSION ((1u << 16) | 0u)
+
+/** The ABI version of the linked library; compare with GYRO_ABI_VERSION. */
+GYRO_API uint32_t gyro_abi_version(void);
+/** Library version, e.g. "0.1.0". */
+GYRO_API const char* gyro_version_string(void);
+
+/** Bits of gyro_features(): what this build has. */
+enum {
+  GYRO_FEATURE_OPENMP = 1u << 0,        /**< batch calls can use several threads */
+  GYRO_FEATURE_SIMD_SSE2 = 1u << 1,     /**< SIMD levels compiled in (see also */
+  GYRO_FEATURE_SIMD_AVX2 = 1u << 2,     /**< gyro_simd_level_available for the CPU) */
+  GYRO_FEATURE_SIMD_AVX512 = 1u << 3,
+  GYRO_FEATURE_SIMD_NEON = 1u << 4,
+  GYRO_FEATURE_MATH = 1u << 8,          /**< math and deterministic trigonometry */
+  GYRO_FEATURE_GEOMETRY = 1u << 9       /**< primitives, batch tests and raycasts */
+};
+GYRO_API uint32_t gyro_features(void);
+
+/* ------------------------------------------------------------------ status and errors */
+
+typedef int32_t gyro_status;
+enum {
+  GYRO_OK = 0,
+  GYRO_STATUS_NULL_ARGUMENT = 1,    /**< a required pointer was NULL */
+  GYRO_STATUS_INVALID_COUNT = 2,    /**< a count was negative or too large */
+  GYRO_STATUS_NON_FINITE = 3,       /**< an input was NaN or infinite */
+  GYRO_STATUS_INVALID_ARGUMENT = 4, /**< a value out of its documented range */
+  GYRO_STATUS_UNSUPPORTED = 5,      /**< the build or the CPU lacks the feature */
+  GYRO_STATUS_OUT_OF_MEMORY = 6,
+  GYRO_STATUS_STALE_ID = 7,         /**< the id names an object that no longer exists */
+  GYRO_STATUS_INTERNAL = 8          /**< a bug in gyro */
+};
+
+/** The detail of this thread's last failed call ("" if none). Valid until its next failure. */
+GYRO_API const char* gyro_last_error(void);
+/** "ok", "null_argument", ... */
+GYRO_API const char* gyro_status_name(gyro_status status);
+
+/* ------------------------------------------------------------------ execution settings */
+
+typedef uint32_t gyro_simd_level;
+enum {
+  GYRO_SIMD_AUTO = 0,   /**< the best the CPU and build support (or env GYRO_SIMD) */
+  GYRO_SIMD_SCALAR = 1, /**< the reference every level reproduces bit for bit */
+  GYRO_SIMD_SSE2 = 2,
+  GYRO_SIMD_AVX2 = 3,
+  GYRO_SIMD_AVX512 = 4,
+  GYRO_SIMD_NEON = 5
+};
+
+/** Forces the SIMD level for the process; GYRO_SIMD_AUTO returns to the default.
+ *  GYRO_STATUS_UNSUPPORTED if the build or the CPU lacks it. */
+GYRO_API gyro_status gyro_set_simd_level(gyro_simd_level level);
+/** The level kernels run at now. */
+GYRO_API gyro_simd_level gyro_get_simd_level(void);
+/** 1 if the build has the level and this CPU can run it. */
+GYRO_API uint32_t gyro_simd_level_available(gyro_simd_level level);
+/** "scalar", "sse2", "avx2", "avx512", "neon" or "auto". */
+GYRO_API const char* gyro_simd_level_name(gyro_simd_level level);
+
+/** Threads batch calls may use; 0 returns to the default (env GYRO_THREADS, else the
+ *  OpenMP default). Results do not depend on it. */
+GYRO_API gyro_status gyro_set_thread_count(uint32_t threads);
+GYRO_API uint32_t gyro_get_thread_count(void);
+
+/* ------------------------------------------------------------------ batch raycasts */
+
+/** Rays o + t d, t in [tmin, tmax]. tmin and tmax may be NULL (0 and +infinity). d need
+ *  not be unit length (t is then in units of |d|); a zero or subnormal d never hits. */
+typedef struct gyro_ray_soa {
+  const float* ox;
+  const float* oy;
+  const float* oz;
+  const float* dx;
+  const float* dy;
+  const float* dz;
+  const float* tmin;
+  const float* tmax;
+} gyro_ray_soa;
+
+/** Spheres: centre and radius (>= 0). */
+typedef struct gyro_sphere_soa {
+  const float* cx;
+  const float* cy;
+  const float* cz;
+  const float* r;
+} gyro_sphere_soa;
+
+/** Per-ray results. primitive: index of the primitive hit, or -1 (t is then +infinity and
+ *  the normal 0). nx, ny, nz are optional: all three or all NULL. */
+typedef struct gyro_hit_soa {
+  float* t;
+  int32_t* primitive;
+  float* nx;
+  float* ny;
+  float* nz;
+} gyro_hit_soa;
+
+/** Closest hit of every ray against every sphere (brute force). The hit is the first
+ *  crossing of a sphere surface in [tmin, tmax]: a ray starting inside a sphere reports
+ *  where it leaves. Ties go to the lower sphere index.
+ *  Errors (nothing written): NULL_ARGUMENT, INVALID_COUNT (negative), NON_FINITE (NaN or
+ *  infinite coordinate or radius), INVALID_ARGUMENT (negative radius, tmin < 0 or not
+ *  finite, tmax NaN or < 0; tmax may be +infinity). */
+GYRO_API gyro_status gyro_raycast_spheres_closest(const gyro_ray_soa* rays, int32_t ray_count,
+                                                  const gyro_sphere_soa* spheres, int32_t sphere_count,
+                                                  const gyro_hit_soa* hits);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* GYRO_H */

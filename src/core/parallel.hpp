@@ -1,0 +1,43 @@
+// Parallel loops whose results never depend on the thread count.
+//
+// parallel_for cuts [0, n) into fixed chunks of `chunk` elements ([k*chunk, (k+1)*chunk)),
+// a function of n and chunk only. Each chunk is one call; a kernel writes only the outputs
+// of its own chunk, so which thread runs which chunk cannot change a result. With one
+// thread, or a single chunk, everything runs on the calling thread with no OpenMP cost.
+//
+// ordered_reduce sums in fixed blocks of kReduceBlock elements, each block in index order,
+// then the block sums in index order: bit-identical for any thread count and any SIMD
+// width (an OpenMP reduction clause is not: TOOLCHAIN.md).
+#pragma once
+
+#include <cstddef>
+#include <span>
+#include <utility>
+
+namespace gyro::detail {
+
+using ChunkFn = void (*)(void* context, std::size_t begin, std::size_t end);
+
+/// Type-erased core of parallel_for (the only place OpenMP is used).
+void parallel_for_chunks(std::size_t n, std::size_t chunk, ChunkFn fn, void* context);
+
+template <class F> void parallel_for(std::size_t n, std::size_t chunk, F&& fn) {
+  auto thunk = [](void* ctx, std::size_t b, std::size_t e) { (*static_cast<std::remove_reference_t<F>*>(ctx))(b, e); };
+  parallel_for_chunks(n, chunk, thunk, const_cast<void*>(static_cast<const void*>(&fn)));
+}
+
+inline constexpr std::size_t kReduceBlock = 4096;
+
+inline std::size_t reduce_block_count(std::size_t n) { return (n + kReduceBlock - 1) / kReduceBlock; }
+
+/// Sums block_sum(begin, end) over the fixed blocks of [0, n). `scratch` must hold
+/// reduce_block_count(n) values. block_sum must sum its block in index order.
+template <class T, class BlockSum> T ordered_reduce(std::size_t n, std::span<T> scratch, BlockSum&& block_sum) {
+  parallel_for(n, kReduceBlock, [&](std::size_t b, std::size_t e) { scratch[b / kReduceBlock] = block_sum(b, e); });
+  T acc{};
+  const std::size_t blocks = reduce_block_count(n);
+  for (std::size_t k = 0; k < blocks; ++k) acc = acc + scratch[k];
+  return acc;
+}
+
+}  // namespace gyro::detail

@@ -1,0 +1,135 @@
+/* The C ABI from a C99 program: versions, settings, a batch raycast, and bad input that
+ * must get a clear status and write nothing. */
+#include "gyro.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+static int failures = 0;
+#define CHECK(cond)                                                   \
+  do {                                                                \
+    if (!(cond)) {                                                    \
+      fprintf(stderr, "%s:%d: CHECK failed: %s\n", __FILE__, __LINE__, #cond); \
+      ++failures;                                                     \
+    }                                                                 \
+  } while (0)
+
+#define N 37
+#define POISON_T 12345.0f
+#define POISON_P 777
+
+static float ox[N], oy[N], oz[N], dx[N], dy[N], dz[N];
+static float cx[3] = {0, 10, 0}, cy[3] = {0, 0, 10}, cz[3] = {0, 0, 0}, cr[3] = {1, 2, 0.5f};
+static float t[N], nx[N], ny[N], nz[N];
+static int32_t prim[N];
+
+static void poison(void) {
+  int i;
+  for (i = 0; i < N; ++i) t[i] = POISON_T, prim[i] = POISON_P, nx[i] = ny[i] = nz[i] = POISON_T;
+}
+static int untouched(void) {
+  int i;
+  for (i = 0; i < N; ++i)
+    if (t[i] != POISON_T || prim[i] != POISON_P || nx[i] != POISON_T) return 0;
+  return 1;
+}
+
+int main(void) {
+  gyro_ray_soa rays;
+  gyro_sphere_soa spheres;
+  gyro_hit_soa hits;
+  int i;
+  uint32_t v;
+
+  CHECK(gyro_abi_version() >> 16 == GYRO_ABI_VERSION >> 16);
+  CHECK(strlen(gyro_version_string()) > 0);
+  CHECK(gyro_features() & GYRO_FEATURE_MATH);
+  CHECK(sizeof(gyro_ray_soa) == 8 * sizeof(void*));
+  CHECK(sizeof(gyro_status) == 4 && sizeof(gyro_simd_level) == 4);
+  CHECK(strcmp(gyro_status_name(GYRO_STATUS_NON_FINITE), "non_finite") == 0);
+  CHECK(strcmp(gyro_status_name(-3), "unknown_status") == 0);
+
+  /* Settings */
+  CHECK(gyro_simd_level_available(GYRO_SIMD_SCALAR));
+  CHECK(gyro_set_simd_level(GYRO_SIMD_SCALAR) == GYRO_OK);
+  CHECK(gyro_get_simd_level() == GYRO_SIMD_SCALAR);
+  CHECK(strcmp(gyro_simd_level_name(GYRO_SIMD_SCALAR), "scalar") == 0);
+  CHECK(gyro_set_simd_level(77) == GYRO_STATUS_INVALID_ARGUMENT);
+  CHECK(gyro_get_simd_level() == GYRO_SIMD_SCALAR);
+  CHECK(gyro_set_simd_level(GYRO_SIMD_AUTO) == GYRO_OK);
+  for (v = GYRO_SIMD_SCALAR; v <= GYRO_SIMD_NEON; ++v)
+    if (!gyro_simd_level_available(v)) CHECK(gyro_set_simd_level(v) == GYRO_STATUS_UNSUPPORTED);
+  CHECK(gyro_set_thread_count(2) == GYRO_OK);
+  CHECK(gyro_set_thread_count(100000) == GYRO_STATUS_INVALID_COUNT);
+  CHECK(strstr(gyro_last_error(), "1024") != NULL);
+  CHECK(gyro_set_thread_count(0) == GYRO_OK);
+
+  /* A fan of rays from (-5, 0, 0) towards +x: the middle ones hit sphere 0 at t = 4. */
+  for (i = 0; i < N; ++i) {
+    float a = (float)(i - N / 2) * 0.02f;
+    ox[i] = -5, oy[i] = 0, oz[i] = 0;
+    dx[i] = cosf(a), dy[i] = sinf(a), dz[i] = 0;
+  }
+  rays.ox = ox, rays.oy = oy, rays.oz = oz, rays.dx = dx, rays.dy = dy, rays.dz = dz;
+  rays.tmin = NULL, rays.tmax = NULL;
+  spheres.cx = cx, spheres.cy = cy, spheres.cz = cz, spheres.r = cr;
+  hits.t = t, hits.primitive = prim, hits.nx = nx, hits.ny = ny, hits.nz = nz;
+
+  poison();
+  CHECK(gyro_raycast_spheres_closest(&rays, N, &spheres, 3, &hits) == GYRO_OK);
+  CHECK(prim[N / 2] == 0 && fabsf(t[N / 2] - 4.0f) < 1e-6f && fabsf(nx[N / 2] + 1.0f) < 1e-6f);
+  for (i = 0; i < N; ++i) CHECK(prim[i] == -1 || prim[i] == 0 || prim[i] == 1);
+  for (i = 0; i < N; ++i) CHECK(prim[i] >= 0 ? t[i] > 0 : t[i] == INFINITY);
+
+  /* Bad input: a clear status, a message, nothing written. */
+  poison();
+  CHECK(gyro_raycast_spheres_closest(NULL, N, &spheres, 3, &hits) == GYRO_STATUS_NULL_ARGUMENT);
+  CHECK(gyro_raycast_spheres_closest(&rays, N, NULL, 3, &hits) == GYRO_STATUS_NULL_ARGUMENT);
+  CHECK(gyro_raycast_spheres_closest(&rays, N, &spheres, 3, NULL) == GYRO_STATUS_NULL_ARGUMENT);
+  CHECK(gyro_raycast_spheres_closest(&rays, -1, &spheres, 3, &hits) == GYRO_STATUS_INVALID_COUNT);
+  CHECK(strstr(gyro_last_error(), "ray_count") != NULL);
+  CHECK(gyro_raycast_spheres_closest(&rays, N, &spheres, -5, &hits) == GYRO_STATUS_INVALID_COUNT);
+  rays.dz = NULL;
+  CHECK(gyro_raycast_spheres_closest(&rays, N, &spheres, 3, &hits) == GYRO_STATUS_NULL_ARGUMENT);
+  CHECK(strstr(gyro_last_error(), "rays.dz") != NULL);
+  rays.dz = dz;
+  dx[5] = NAN;
+  CHECK(gyro_raycast_spheres_closest(&rays, N, &spheres, 3, &hits) == GYRO_STATUS_NON_FINITE);
+  CHECK(strstr(gyro_last_error(), "rays.dx[5]") != NULL);
+  dx[5] = 1.0f;
+  cr[1] = -2.0f;
+  CHECK(gyro_raycast_spheres_closest(&rays, N, &spheres, 3, &hits) == GYRO_STATUS_INVALID_ARGUMENT);
+  cr[1] = INFINITY;
+  CHECK(gyro_raycast_spheres_closest(&rays, N, &spheres, 3, &hits) == GYRO_STATUS_NON_FINITE);
+  cr[1] = 2.0f;
+  hits.ny = NULL;
+  CHECK(gyro_raycast_spheres_closest(&rays, N, &spheres, 3, &hits) == GYRO_STATUS_NULL_ARGUMENT);
+  hits.ny = ny;
+  CHECK(untouched());
+
+  /* Results do not depend on the SIMD level or threads: compare every available level. */
+  {
+    float ref_t[N];
+    int32_t ref_p[N];
+    CHECK(gyro_set_simd_level(GYRO_SIMD_SCALAR) == GYRO_OK);
+    CHECK(gyro_raycast_spheres_closest(&rays, N, &spheres, 3, &hits) == GYRO_OK);
+    memcpy(ref_t, t, sizeof t), memcpy(ref_p, prim, sizeof prim);
+    for (v = GYRO_SIMD_SSE2; v <= GYRO_SIMD_NEON; ++v) {
+      if (!gyro_simd_level_available(v)) continue;
+      CHECK(gyro_set_simd_level(v) == GYRO_OK);
+      poison();
+      CHECK(gyro_raycast_spheres_closest(&rays, N, &spheres, 3, &hits) == GYRO_OK);
+      CHECK(memcmp(ref_t, t, sizeof t) == 0 && memcmp(ref_p, prim, sizeof prim) == 0);
+    }
+    CHECK(gyro_set_simd_level(GYRO_SIMD_AUTO) == GYRO_OK);
+  }
+
+  if (failures) {
+    fprintf(stderr, "%d checks failed\n", failures);
+    return 1;
+  }
+  printf("capi: all checks passed (%s, %u threads)\n", gyro_simd_level_name(gyro_get_simd_level()),
+         gyro_get_thread_count());
+  return 0;
+}

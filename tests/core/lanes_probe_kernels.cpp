@@ -1,0 +1,21 @@
+#include "core/lanes.hpp"
+#include "lanes_probe.hpp"
+
+namespace gyro::GYRO_ARCH_NS {
+
+void lanes_probe(const LaneProbeArgs& p, std::size_t begin, std::size_t end) {
+  for_lanes(begin, end, [&](auto tag, std::size_t i) {
+    using L = decltype(tag);
+    const L a = load<L>(p.a + i), b = load<L>(p.b + i);
+    const L one(1.0f), zero(0.0f);
+    const L results[kLaneProbeOps] = {
+        a + b, a - b, a * b, a / b, sqrt(a), abs(a), -a, copysign(a, b), min(a, b), max(a, b),
+        select(a < b, one, zero), select(a <= b, one, zero), select(a > b, one, zero), select(a >= b, one, zero),
+        select(a == b, one, zero), select(a != b, one, zero), select((a < b) && (b > zero), one, zero),
+        select((a < b) || !(b > zero), one, zero), select(a < b, a, b), a + L(0.0f), a * L(0.0f),
+        from_bits<L>(0x7f7fffffu) + a};
+    for (int k = 0; k < kLaneProbeOps; ++k) store(p.out[k] + i, results[k]);
+  });
+}
+
+}  // namespace gyro::GYRO_ARCH_NS

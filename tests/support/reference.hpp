@@ -1,0 +1,38 @@
+// Double-precision references: the answers gyro's float kernels are measured against.
+#pragma once
+
+#include "workloads.hpp"
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace gyro::testing {
+
+struct RefHit {
+  double t = 0;          // +inf on a miss
+  int32_t primitive = -1;
+};
+
+/// Closest sphere-surface crossing with t in [tmin, tmax], in binary64 from the binary32
+/// inputs (the textbook quadratic: binary64 has the bits to spare).
+RefHit ref_ray_spheres(double ox, double oy, double oz, double dx, double dy, double dz, double tmin, double tmax,
+                       const SphereSet& spheres);
+
+/// The reference for rays [0, count), in parallel over rays (order does not matter here).
+std::vector<RefHit> ref_raycast_spheres(const RaySet& rays, std::size_t count, const SphereSet& spheres);
+
+/// How a float answer compares with the reference.
+struct RaycastError {
+  std::size_t rays = 0;
+  std::size_t hits = 0;               // gyro hits
+  std::size_t ref_hits = 0;
+  std::size_t disagreements = 0;      // hit/miss or primitive differ
+  double max_abs_t = 0;               // over rays where both agree
+  double max_rel_t = 0;
+  double sum_t = 0;                   // gyro: sum of float t over hits, in ray order, in binary64
+  double ref_sum_t = 0;               // reference t rounded to float, summed the same way
+};
+RaycastError compare_raycast(const HitSet& hits, const std::vector<RefHit>& ref, std::size_t count);
+
+}  // namespace gyro::testing
