@@ -1,1 +1,84 @@
-int main(){return 0;}
+// gyro-bench: the scenario runner. One JSON line per measurement (BENCHMARKS.md).
+//   gyro-bench [--workload NAME] [--threads N[,N...]] [--simd LEVEL[,LEVEL...]] [--reps N]
+//              [--peers] [--list]
+#include "scenario.hpp"
+
+#include <cstdlib>
+#include <cstring>
+#include <sstream>
+
+namespace gyro::bench {
+void run_r1s(const Options&);
+
+namespace {
+const Workload kWorkloads[] = {
+    {"R1S", "10k R1 rays x 10k spheres, closest hit, brute force, per SIMD level and thread count", run_r1s},
+};
+
+int usage() {
+  std::fprintf(stderr,
+               "usage: gyro-bench [--workload NAME] [--threads N,...] [--simd LEVEL,...] [--reps N] [--peers] [--list]\n");
+  return 2;
+}
+
+std::vector<std::string> split(const char* s) {
+  std::vector<std::string> out;
+  std::stringstream ss(s);
+  for (std::string item; std::getline(ss, item, ',');) out.push_back(item);
+  return out;
+}
+}  // namespace
+}  // namespace gyro::bench
+
+int main(int argc, char** argv) {
+  using namespace gyro::bench;
+  Options o;
+  for (int i = 1; i < argc; ++i) {
+    auto value = [&]() -> const char* { return i + 1 < argc ? argv[++i] : nullptr; };
+    if (!std::strcmp(argv[i], "--list")) {
+      for (const Workload& w : kWorkloads) std::printf("%-6s %s\n", w.name, w.description);
+      return 0;
+    } else if (!std::strcmp(argv[i], "--peers")) {
+      o.peers = true;
+    } else if (!std::strcmp(argv[i], "--workload")) {
+      const char* v = value();
+      if (!v) return usage();
+      o.workload = v;
+    } else if (!std::strcmp(argv[i], "--reps")) {
+      const char* v = value();
+      if (!v || std::atoi(v) < 1) return usage();
+      o.reps = std::atoi(v);
+    } else if (!std::strcmp(argv[i], "--threads")) {
+      const char* v = value();
+      if (!v) return usage();
+      for (const auto& t : split(v)) {
+        const int n = std::atoi(t.c_str());
+        if (n < 1 || n > 1024) return usage();
+        o.threads.push_back(uint32_t(n));
+      }
+    } else if (!std::strcmp(argv[i], "--simd")) {
+      const char* v = value();
+      if (!v) return usage();
+      for (const auto& name : split(v)) {
+        gyro::SimdLevel l;
+        if (!gyro::parse_simd_level(name.c_str(), &l)) return usage();
+        o.levels.push_back(l);
+      }
+    } else {
+      return usage();
+    }
+  }
+  std::printf("# gyro-bench: simd %s detected, %u threads default; times are medians of %d reps\n",
+              gyro::simd_level_name(gyro::detected_simd_level()), gyro::thread_count(), o.reps);
+  bool any = false;
+  for (const Workload& w : kWorkloads) {
+    if (!o.workload.empty() && o.workload != w.name) continue;
+    any = true;
+    w.run(o);
+  }
+  if (!any) {
+    std::fprintf(stderr, "gyro-bench: unknown workload '%s' (--list)\n", o.workload.c_str());
+    return 2;
+  }
+  return 0;
+}
