@@ -2,6 +2,7 @@
 
 #include "core/state_hash.hpp"
 #include "gyro/batch_raycast.hpp"
+#include "gyro/math.hpp"
 #include "math/trig_batch.hpp"
 #include "workloads.hpp"
 
@@ -69,10 +70,65 @@ uint64_t scene_rays_edge_cases() {
   return h.digest();
 }
 
+// The public math library (include/gyro/math*.hpp, Cookbook chapters 1-3) over seeded
+// inputs: inverses, products, determinants, adjugates, quaternion products, slerp, to_mat3,
+// integration, transforms, view and projection matrices, angles. Header-only inline code
+// is compiled into each caller, so this pins what every compiler makes of it.
+uint64_t scene_math_library() {
+  SplitMix64 rng(0x6d617468);  // "math"
+  const auto f = [&rng](double lo, double hi) { return static_cast<float>(lo + (hi - lo) * rng.u()); };
+  const auto v3 = [&f](double r) { return vec3{f(-r, r), f(-r, r), f(-r, r)}; };
+  detail::StateHasher h;
+  const auto add = [&h](const auto& m) {
+    h.add_floats(std::span<const float>(reinterpret_cast<const float*>(&m), sizeof(m) / sizeof(float)));
+  };
+  for (int i = 0; i < 256; ++i) {
+    const vec3 s{f(0.1, 10), f(0.1, 10), f(0.1, 10)}, euler = v3(4), t = v3(1000), axis = v3(1);
+    const float a = f(-7, 7);
+    const mat4 trs = transform(s, euler, t);
+    mat4 inv = mat4::zero();
+    h.add_u32(inverse(trs, &inv));
+    add(inv), add(trs * inv), h.add_float(determinant(trs));
+    const mat4 rigid = rotation_axis_angle(axis, a) * translation(t);
+    add(inverse_rigid(rigid)), add(transform(s, axis, a, t));
+    mat4 g;
+    for (int k = 0; k < 16; ++k) g.data()[k] = f(-2, 2);
+    if (i % 8 == 0)
+      for (int k = 0; k < 4; ++k) g.m[3][k] = g.m[0][k] * 0.5f + g.m[1][k] * 1.5f;  // nearly singular
+    mat4 ginv = mat4::zero();
+    h.add_u32(inverse(g, &ginv));
+    add(ginv), h.add_float(determinant(g)), add(adjugate(g)), add(g * trs);
+    mat3 g3 = to_mat3(g), g3inv;
+    h.add_u32(inverse(g3, &g3inv));
+    add(g3inv), add(minors(g3)), h.add_float(determinant(mat2{{{g3.m[0][0], g3.m[0][1]}, {g3.m[1][0], g3.m[1][1]}}}));
+    const quat qa = from_axis_angle(axis, a), qb = from_euler(euler.x, euler.y, euler.z);
+    const float t0 = f(0, 1), t1 = f(0, 1);
+    add(qa * qb), add(slerp(qa, qb, t0)), add(nlerp(qa, qb, t1)), add(to_mat3(qa * qb));
+    add(slerp(qa, from_axis_angle(axis, a + 0.01f), 0.25f)), add(inverse(qb * 3.0f));
+    const vec3 omega = v3(10);
+    add(integrate(qa, omega, 1.0f / 60.0f)), add(rotate(qb, t)), add(transform(s, qb, t));
+    add(rotation_euler(euler.x, euler.y, euler.z)), add(rotation3_axis_angle(axis, a));
+    const vec3 eye = v3(100), target = v3(100), up = v3(1);
+    add(look_at(eye, target, up)), add(look_at_rh(eye, target, up));
+    // One draw per declarator: the order of arguments in a call is unspecified in C++.
+    const float n = f(0.01, 1), fa = n * f(10, 1e4), fov = f(0.3, 2.5), aspect = f(0.5, 2.5);
+    const float l = -f(1, 50), r = f(1, 50), b = -f(1, 50), tp = f(1, 50);
+    const mat4 proj = perspective(fov, aspect, n, fa), proj_rh = perspective_rh(1.0f, 1.5f, n, fa);
+    add(proj), add(proj_rh), add(vec4{t.x, t.y, t.z, 1.0f} * proj);
+    add(orthographic(l, r, b, tp, n, fa)), add(orthographic_rh(-8, 8, -4.5f, 4.5f, n, fa));
+    add(multiply_point(eye, look_at(eye, target, up) * proj)), add(multiply_vector(axis, trs));
+    const vec3 p = v3(50), d = v3(50);
+    h.add_float(angle(p, d)), h.add_float(angle(p, cross(p, d))), add(normalized(d * 1e-30f)), add(normalized(p));
+    add(project(p, d)), add(perpendicular(p, d)), add(reflect(p, normalized(d))), h.add_float(distance(p, d));
+  }
+  return h.digest();
+}
+
 const DetScene kScenes[] = {
     {"trig", scene_trig, 0x69125c38406c536bull},
     {"r1s_2k", scene_r1s_2k, 0xe7b85af4156f94a1ull},
     {"rays_edge_cases", scene_rays_edge_cases, 0xe8bc1c3d106c89c5ull},
+    {"math_library", scene_math_library, 0x3de9709813336bbcull},
 };
 
 }  // namespace
