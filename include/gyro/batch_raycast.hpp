@@ -8,6 +8,7 @@
 // primitive index. Results are bit-identical at every SIMD level and thread count.
 #pragma once
 
+#include "gyro/shape_arrays.hpp"
 #include "gyro/status.hpp"
 
 #include <cstddef>
@@ -25,14 +26,6 @@ struct RaysView {
   const float* dz = nullptr;
   const float* tmin = nullptr;
   const float* tmax = nullptr;
-};
-
-/// Spheres: centre and radius (radius >= 0; 0 is a point).
-struct SpheresView {
-  const float* cx = nullptr;
-  const float* cy = nullptr;
-  const float* cz = nullptr;
-  const float* r = nullptr;
 };
 
 /// Per-ray results. primitive is the index hit, or -1 (then t is +infinity and the

@@ -58,4 +58,38 @@ RaycastError compare_raycast(const HitSet& hits, const std::vector<RefHit>& ref,
   return e;
 }
 
+double ref_obb_obb_separation(const BoxSet& A, std::size_t i, const BoxSet& B, std::size_t j) {
+  struct Box {
+    double c[3], e[3], u[3][3];
+  };
+  auto get = [](const BoxSet& s, std::size_t k) {
+    Box b;
+    b.c[0] = s.cx[k], b.c[1] = s.cy[k], b.c[2] = s.cz[k];
+    b.e[0] = s.hx[k], b.e[1] = s.hy[k], b.e[2] = s.hz[k];
+    for (int axis = 0; axis < 3; ++axis)
+      for (int comp = 0; comp < 3; ++comp) b.u[axis][comp] = s.r[3 * comp + axis][k];  // column = axis
+    return b;
+  };
+  const Box a = get(A, i), b = get(B, j);
+  auto dot = [](const double* x, const double* y) { return x[0] * y[0] + x[1] * y[1] + x[2] * y[2]; };
+  const double d[3] = {b.c[0] - a.c[0], b.c[1] - a.c[1], b.c[2] - a.c[2]};
+  double best = -INFINITY;
+  auto test = [&](const double* axis) {
+    const double len = std::sqrt(dot(axis, axis));
+    if (len < 1e-9) return;
+    double ra = 0, rb = 0;
+    for (int k = 0; k < 3; ++k) ra += a.e[k] * std::abs(dot(a.u[k], axis)), rb += b.e[k] * std::abs(dot(b.u[k], axis));
+    best = std::max(best, (std::abs(dot(d, axis)) - ra - rb) / len);
+  };
+  for (int k = 0; k < 3; ++k) test(a.u[k]), test(b.u[k]);
+  for (int p = 0; p < 3; ++p)
+    for (int q = 0; q < 3; ++q) {
+      const double* x = a.u[p];
+      const double* y = b.u[q];
+      const double c[3] = {x[1] * y[2] - x[2] * y[1], x[2] * y[0] - x[0] * y[2], x[0] * y[1] - x[1] * y[0]};
+      test(c);
+    }
+  return best;
+}
+
 }  // namespace gyro::testing

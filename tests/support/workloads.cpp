@@ -52,4 +52,35 @@ RaySet r1_rays(std::size_t count) {
   return r;
 }
 
+BoxPairs n1_pairs(std::size_t pairs) {
+  SplitMix64 rng(4);
+  BoxPairs out;
+  for (std::size_t k = 0; k < 2 * pairs; ++k) {
+    BoxSet& s = (k % 2 == 0) ? out.a : out.b;
+    double u[9];
+    for (double& v : u) v = rng.u();
+    s.cx.push_back(f32(4 * u[0])), s.cy.push_back(f32(4 * u[1])), s.cz.push_back(f32(4 * u[2]));
+    s.hx.push_back(f32(0.2 + 0.8 * u[3])), s.hy.push_back(f32(0.2 + 0.8 * u[4])), s.hz.push_back(f32(0.2 + 0.8 * u[5]));
+    const double s1 = std::sqrt(1 - u[6]), s2 = std::sqrt(u[6]), a = kTwoPi * u[7], b = kTwoPi * u[8];
+    const double x = s1 * std::sin(a), y = s1 * std::cos(a), z = s2 * std::sin(b), w = s2 * std::cos(b);
+    const double R[9] = {1.0 - 2.0 * (y * y + z * z), 2.0 * (x * y - z * w), 2.0 * (x * z + y * w),
+                         2.0 * (x * y + z * w), 1.0 - 2.0 * (x * x + z * z), 2.0 * (y * z - x * w),
+                         2.0 * (x * z - y * w), 2.0 * (y * z + x * w), 1.0 - 2.0 * (x * x + y * y)};
+    for (int e = 0; e < 9; ++e) s.r[e].push_back(f32(R[e]));
+  }
+  return out;
+}
+
+uint64_t BoxPairs::fnv() const {
+  uint64_t h = 0xcbf29ce484222325ull;
+  for (std::size_t p = 0; p < a.size(); ++p) {
+    for (const BoxSet* s : {&a, &b}) {
+      const float v[15] = {s->cx[p], s->cy[p], s->cz[p], s->hx[p], s->hy[p], s->hz[p], s->r[0][p], s->r[1][p],
+                           s->r[2][p], s->r[3][p], s->r[4][p], s->r[5][p], s->r[6][p], s->r[7][p], s->r[8][p]};
+      h = detail::fnv1a64(v, sizeof v, h);
+    }
+  }
+  return h;
+}
+
 }  // namespace gyro::testing

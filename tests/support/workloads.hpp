@@ -3,6 +3,7 @@
 #pragma once
 
 #include "gyro/batch_raycast.hpp"
+#include "gyro/shape_arrays.hpp"
 
 #include <cstddef>
 #include <cstdint>
@@ -56,6 +57,29 @@ struct HitSet {
             normals ? nz.data() : nullptr};
   }
 };
+
+/// Oriented boxes, SoA, with the orientation matrix R stored row-major (R[3*row + col]);
+/// BENCHMARKS.md's convention: column k of R is the box's local axis k.
+struct BoxSet {
+  std::vector<float> cx, cy, cz, hx, hy, hz;
+  std::vector<float> r[9];
+  std::size_t size() const { return cx.size(); }
+  /// gyro's view: axis u_k is column k of R.
+  ObbsView view() const {
+    return {cx.data(), cy.data(), cz.data(), hx.data(), hy.data(), hz.data(), r[0].data(), r[3].data(), r[6].data(),
+            r[1].data(), r[4].data(), r[7].data(), r[2].data(), r[5].data(), r[8].data()};
+  }
+};
+
+/// N1: 10^6 pairs of random boxes (seed 4); pair p is box 2p of `a` order and 2p+1, split
+/// into the two sets a (even boxes) and b (odd boxes).
+struct BoxPairs {
+  BoxSet a, b;
+  /// fnv1a64 over c[3], h[3], R[9] per box, boxes in generation order (BENCHMARKS.md).
+  uint64_t fnv() const;
+};
+BoxPairs n1_pairs(std::size_t pairs = 1000000);
+inline constexpr uint64_t kN1BoxesFnv = 0x88bccf7410be3a03ull;
 
 /// R1 spheres: seed 1, 10,000 spheres in a 100 m cube.
 SphereSet r1_spheres(std::size_t count = 10000);
