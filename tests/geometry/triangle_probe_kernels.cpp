@@ -1,0 +1,1 @@
+// Placeholder: being written (per-level probe kernels for the triangle tests).
