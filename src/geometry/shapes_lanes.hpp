@@ -36,6 +36,24 @@ template <class L> struct SegmentL {
   V3<L> a, b;
 };
 
+// ---- validity, fused into the batch kernels: x - x is +0 for a finite x and NaN for an
+// infinite or NaN one, so one sum per shape tells whether every input is finite (2 ops per
+// float instead of a separate pass over memory). Sizes must also be >= 0.
+template <class L> inline L nonfinite_sum(const V3<L>& v) { return ((v.x - v.x) + (v.y - v.y)) + (v.z - v.z); }
+template <class L> inline auto finite_and_nonneg(L sum, L smallest_size) { return (sum == sum) && (smallest_size >= L(0.0f)); }
+template <class L> inline L min3(const V3<L>& v) { return min(min(v.x, v.y), v.z); }
+
+template <class L> inline auto valid(const SphereL<L>& s) { return finite_and_nonneg(nonfinite_sum(s.c) + (s.r - s.r), s.r); }
+template <class L> inline auto valid(const AabbL<L>& b) { return finite_and_nonneg(nonfinite_sum(b.c) + nonfinite_sum(b.e), min3(b.e)); }
+template <class L> inline auto valid(const ObbL<L>& b) {
+  const L sum = ((nonfinite_sum(b.c) + nonfinite_sum(b.e)) + (nonfinite_sum(b.u[0]) + nonfinite_sum(b.u[1]))) + nonfinite_sum(b.u[2]);
+  return finite_and_nonneg(sum, min3(b.e));
+}
+template <class L> inline auto valid(const PlaneL<L>& p) { return finite_and_nonneg(nonfinite_sum(p.n) + (p.d - p.d), L(0.0f)); }
+template <class L> inline auto valid(const TriangleL<L>& t) {
+  return finite_and_nonneg((nonfinite_sum(t.a) + nonfinite_sum(t.b)) + nonfinite_sum(t.c), L(0.0f));
+}
+
 // ---- from SoA views: lanes i..i+width-1
 template <class L> inline SphereL<L> load_sphere(const SpheresView& v, std::size_t i) {
   return {load3<L>(v.cx, v.cy, v.cz, i), load<L>(v.r + i)};

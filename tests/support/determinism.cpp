@@ -1,6 +1,7 @@
 #include "determinism.hpp"
 
 #include "core/state_hash.hpp"
+#include "gyro/batch_overlap.hpp"
 #include "gyro/batch_raycast.hpp"
 #include "gyro/math.hpp"
 #include "math/trig_batch.hpp"
@@ -124,11 +125,29 @@ uint64_t scene_math_library() {
   return h.digest();
 }
 
+// The first 30,000 N1 box pairs: verdicts, separations, and one against many, with a few
+// invalid inputs flagged.
+uint64_t scene_n1_overlap() {
+  static const BoxPairs clean = n1_pairs(30000);
+  BoxPairs p = clean;
+  p.a.cx[5] = __builtin_nanf(""), p.b.hz[9] = -1.0f, p.a.r[2][77] = __builtin_inff();
+  const std::size_t n = p.a.size();
+  std::vector<uint32_t> out(n), one(n);
+  std::vector<float> sep(n);
+  if (overlap_pairwise(shape_array(p.a.view()), shape_array(p.b.view()), n, out.data()) != Status::ok) return 0;
+  if (overlap_one_against_many(shape_array(clean.b.view()), shape_array(clean.a.view()), n, one.data()) != Status::ok) return 0;
+  if (obb_separation_pairwise(clean.a.view(), clean.b.view(), n, sep.data()) != Status::ok) return 0;
+  detail::StateHasher h;
+  h.add_u32s(out), h.add_u32s(one), h.add_floats(sep);
+  return h.digest();
+}
+
 const DetScene kScenes[] = {
     {"trig", scene_trig, 0x69125c38406c536bull},
     {"r1s_2k", scene_r1s_2k, 0xe7b85af4156f94a1ull},
     {"rays_edge_cases", scene_rays_edge_cases, 0xe8bc1c3d106c89c5ull},
     {"math_library", scene_math_library, 0x3de9709813336bbcull},
+    {"n1_overlap", scene_n1_overlap, 0xad908dedd18ef994ull},
 };
 
 }  // namespace

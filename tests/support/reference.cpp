@@ -76,7 +76,7 @@ double ref_obb_obb_separation(const BoxSet& A, std::size_t i, const BoxSet& B, s
   double best = -INFINITY;
   auto test = [&](const double* axis) {
     const double len = std::sqrt(dot(axis, axis));
-    if (len < 1e-9) return;
+    if (len < 1e-2) return;  // gyro's definition: cross axes with |a x b|^2 < 1e-4 are skipped
     double ra = 0, rb = 0;
     for (int k = 0; k < 3; ++k) ra += a.e[k] * std::abs(dot(a.u[k], axis)), rb += b.e[k] * std::abs(dot(b.u[k], axis));
     best = std::max(best, (std::abs(dot(d, axis)) - ra - rb) / len);

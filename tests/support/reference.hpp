@@ -37,7 +37,8 @@ RaycastError compare_raycast(const HitSet& hits, const std::vector<RefHit>& ref,
 
 /// OBB-OBB in binary64 from the float inputs: the largest gap over the 15 SAT axes, each
 /// normalised (> 0 separated; <= 0 overlapping, -value = minimum translation depth). Cross
-/// axes shorter than 1e-9 are skipped (the face axes decide those pairs).
+/// axes shorter than 1e-2 (|a x b|^2 < 1e-4, gyro's definition) are skipped: along them a
+/// gap divided by a tiny length is ill-conditioned, and face axes decide those pairs.
 double ref_obb_obb_separation(const BoxSet& a, std::size_t i, const BoxSet& b, std::size_t j);
 
 }  // namespace gyro::testing
