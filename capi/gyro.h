@@ -49,7 +49,8 @@ enum {
   GYRO_FEATURE_SIMD_AVX512 = 1u << 3,
   GYRO_FEATURE_SIMD_NEON = 1u << 4,
   GYRO_FEATURE_MATH = 1u << 8,          /**< math and deterministic trigonometry */
-  GYRO_FEATURE_GEOMETRY = 1u << 9       /**< primitives, batch tests and raycasts */
+  GYRO_FEATURE_GEOMETRY = 1u << 9,      /**< 3D primitives, batch tests and raycasts */
+  GYRO_FEATURE_2D = 1u << 10            /**< 2D primitives and the quadtree (C++ API) */
 };
 GYRO_API uint32_t gyro_features(void);
 
@@ -123,6 +124,57 @@ typedef struct gyro_sphere_soa {
   const float* r;
 } gyro_sphere_soa;
 
+/** Axis-aligned boxes: centre and half extents (>= 0). */
+typedef struct gyro_aabb_soa {
+  const float *cx, *cy, *cz;
+  const float *ex, *ey, *ez;
+} gyro_aabb_soa;
+
+/** Oriented boxes: centre, half extents (>= 0) and the unit axes u0, u1, u2 (the rows of
+ *  the orientation matrix: world = local * orientation + centre). */
+typedef struct gyro_obb_soa {
+  const float *cx, *cy, *cz;
+  const float *ex, *ey, *ez;
+  const float *u0x, *u0y, *u0z;
+  const float *u1x, *u1y, *u1z;
+  const float *u2x, *u2y, *u2z;
+} gyro_obb_soa;
+
+/** Planes dot(n, p) = d, n unit length. */
+typedef struct gyro_plane_soa {
+  const float *nx, *ny, *nz;
+  const float* d;
+} gyro_plane_soa;
+
+/** Triangles with corners a, b, c. */
+typedef struct gyro_triangle_soa {
+  const float *ax, *ay, *az;
+  const float *bx, *by, *bz;
+  const float *cx, *cy, *cz;
+} gyro_triangle_soa;
+
+typedef uint32_t gyro_shape_type;
+enum {
+  GYRO_SHAPE_SPHERE = 1,
+  GYRO_SHAPE_AABB = 2,
+  GYRO_SHAPE_OBB = 3,
+  GYRO_SHAPE_PLANE = 4,
+  GYRO_SHAPE_TRIANGLE = 5
+};
+
+/** An array of one type of shape: set `type` and the matching member of `as`. */
+typedef struct gyro_shape_soa {
+  gyro_shape_type type;
+  uint32_t reserved; /**< 0 */
+  union {
+    gyro_sphere_soa sphere;
+    gyro_aabb_soa aabb;
+    gyro_obb_soa obb;
+    gyro_plane_soa plane;
+    gyro_triangle_soa triangle;
+  } as;
+} gyro_shape_soa;
+
 /** Per-ray results. primitive: index of the primitive hit, or -1 (t is then +infinity and
  *  the normal 0). nx, ny, nz are optional: all three or all NULL. */
 typedef struct gyro_hit_soa {
@@ -142,6 +194,38 @@ typedef struct gyro_hit_soa {
 GYRO_API gyro_status gyro_raycast_spheres_closest(const gyro_ray_soa* rays, int32_t ray_count,
                                                   const gyro_sphere_soa* spheres, int32_t sphere_count,
                                                   const gyro_hit_soa* hits);
+
+/* ------------------------------------------------------------------ batch overlap tests */
+
+/** Per-pair results of the overlap calls. */
+enum {
+  GYRO_SEPARATED = 0,
+  GYRO_OVERLAPPING = 1,  /**< touching included */
+  GYRO_INVALID_INPUT = 2 /**< an input of the pair is NaN or infinite, or a size is negative */
+};
+
+/** Flags of the batch calls. */
+enum {
+  /** Check the whole input first and fail the call (GYRO_STATUS_NON_FINITE or
+   *  GYRO_STATUS_INVALID_ARGUMENT, nothing written) on any bad element, instead of
+   *  flagging that pair GYRO_INVALID_INPUT. Costs a pass over the input. */
+  GYRO_BATCH_STRICT = 1u << 0
+};
+
+/** out[i] = overlap of a[i] and b[i] for i < count; every type pair (sphere, AABB, OBB,
+ *  plane, triangle). Errors (nothing written): NULL_ARGUMENT, INVALID_COUNT, and
+ *  INVALID_ARGUMENT for an unknown type or flag. Bit-identical at every SIMD level. */
+GYRO_API gyro_status gyro_overlap_pairwise(const gyro_shape_soa* a, const gyro_shape_soa* b, int32_t count,
+                                           uint32_t* out, uint32_t flags);
+
+/** out[i] = overlap of one[0] and many[i] for i < count. */
+GYRO_API gyro_status gyro_overlap_one_against_many(const gyro_shape_soa* one, const gyro_shape_soa* many,
+                                                   int32_t count, uint32_t* out, uint32_t flags);
+
+/** OBB pairs: out[i] = signed separation over the 15 separating axes: > 0 the gap, <= 0
+ *  minus the penetration depth (the minimum translation distance). Strict input check. */
+GYRO_API gyro_status gyro_obb_separation_pairwise(const gyro_obb_soa* a, const gyro_obb_soa* b, int32_t count,
+                                                  float* out);
 
 #ifdef __cplusplus
 }

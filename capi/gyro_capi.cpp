@@ -4,9 +4,11 @@
 
 #include "core/error.hpp"
 #include "core/validate.hpp"
+#include "gyro/batch_overlap.hpp"
 #include "gyro/batch_raycast.hpp"
 #include "gyro/runtime.hpp"
 
+#include <bit>
 #include <new>
 
 namespace {
@@ -27,6 +29,32 @@ Status check_count(int32_t n, const char* name) {
   return n < 0 ? gyro::detail::fail(Status::invalid_count, "%s = %d is negative", name, n) : Status::ok;
 }
 
+// The C views have exactly the C++ views' layout (asserted below), so they convert by copy.
+template <class To, class From> To view_of(const From& f) { return std::bit_cast<To>(f); }
+static_assert(sizeof(gyro_sphere_soa) == sizeof(gyro::SpheresView) && sizeof(gyro_aabb_soa) == sizeof(gyro::AabbsView) &&
+              sizeof(gyro_obb_soa) == sizeof(gyro::ObbsView) && sizeof(gyro_plane_soa) == sizeof(gyro::PlanesView) &&
+              sizeof(gyro_triangle_soa) == sizeof(gyro::TrianglesView));
+
+gyro::ShapeArray shape_array_of(const gyro_shape_soa& s) {
+  gyro::ShapeArray a;
+  a.type = static_cast<gyro::ShapeType>(s.type);
+  switch (s.type) {
+    case GYRO_SHAPE_SPHERE: a.spheres = view_of<gyro::SpheresView>(s.as.sphere); break;
+    case GYRO_SHAPE_AABB: a.aabbs = view_of<gyro::AabbsView>(s.as.aabb); break;
+    case GYRO_SHAPE_OBB: a.obbs = view_of<gyro::ObbsView>(s.as.obb); break;
+    case GYRO_SHAPE_PLANE: a.planes = view_of<gyro::PlanesView>(s.as.plane); break;
+    case GYRO_SHAPE_TRIANGLE: a.triangles = view_of<gyro::TrianglesView>(s.as.triangle); break;
+    default: break;  // rejected by the call with invalid_argument
+  }
+  return a;
+}
+
+Status check_shapes(const gyro_shape_soa* s, const char* name) {
+  if (!s) return gyro::detail::fail(Status::null_argument, "%s is null", name);
+  if (s->reserved != 0) return gyro::detail::fail(Status::invalid_argument, "%s->reserved must be 0", name);
+  return Status::ok;
+}
+
 }  // namespace
 
 extern "C" {
@@ -44,6 +72,9 @@ GYRO_API uint32_t gyro_features(void) {
   if (gyro::simd_level_built(SimdLevel::neon)) f |= GYRO_FEATURE_SIMD_NEON;
 #if defined(GYRO_HAS_GEOMETRY)
   f |= GYRO_FEATURE_GEOMETRY;
+#endif
+#if defined(GYRO_HAS_2D)
+  f |= GYRO_FEATURE_2D;
 #endif
   return f;
 }
@@ -80,10 +111,41 @@ GYRO_API gyro_status gyro_raycast_spheres_closest(const gyro_ray_soa* rays, int3
     if (!spheres) return gyro::detail::fail(Status::null_argument, "spheres is null");
     if (!hits) return gyro::detail::fail(Status::null_argument, "hits is null");
     const gyro::RaysView r{rays->ox, rays->oy, rays->oz, rays->dx, rays->dy, rays->dz, rays->tmin, rays->tmax};
-    const gyro::SpheresView s{spheres->cx, spheres->cy, spheres->cz, spheres->r};
+    const gyro::SpheresView s = view_of<gyro::SpheresView>(*spheres);
     const gyro::HitsOut h{hits->t, hits->primitive, hits->nx, hits->ny, hits->nz};
     return gyro::raycast_spheres_closest(r, static_cast<std::size_t>(ray_count), s,
                                          static_cast<std::size_t>(sphere_count), h);
+  });
+}
+
+GYRO_API gyro_status gyro_overlap_pairwise(const gyro_shape_soa* a, const gyro_shape_soa* b, int32_t count,
+                                           uint32_t* out, uint32_t flags) {
+  return guarded([&]() -> Status {
+    GYRO_TRY(check_count(count, "count"));
+    GYRO_TRY(check_shapes(a, "a"));
+    GYRO_TRY(check_shapes(b, "b"));
+    return gyro::overlap_pairwise(shape_array_of(*a), shape_array_of(*b), static_cast<std::size_t>(count), out, flags);
+  });
+}
+
+GYRO_API gyro_status gyro_overlap_one_against_many(const gyro_shape_soa* one, const gyro_shape_soa* many,
+                                                   int32_t count, uint32_t* out, uint32_t flags) {
+  return guarded([&]() -> Status {
+    GYRO_TRY(check_count(count, "count"));
+    GYRO_TRY(check_shapes(one, "one"));
+    GYRO_TRY(check_shapes(many, "many"));
+    return gyro::overlap_one_against_many(shape_array_of(*one), shape_array_of(*many), static_cast<std::size_t>(count),
+                                          out, flags);
+  });
+}
+
+GYRO_API gyro_status gyro_obb_separation_pairwise(const gyro_obb_soa* a, const gyro_obb_soa* b, int32_t count,
+                                                  float* out) {
+  return guarded([&]() -> Status {
+    GYRO_TRY(check_count(count, "count"));
+    if (!a || !b) return gyro::detail::fail(Status::null_argument, "%s is null", a ? "b" : "a");
+    return gyro::obb_separation_pairwise(view_of<gyro::ObbsView>(*a), view_of<gyro::ObbsView>(*b),
+                                         static_cast<std::size_t>(count), out);
   });
 }
 

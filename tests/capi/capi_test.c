@@ -125,6 +125,54 @@ int main(void) {
     CHECK(gyro_set_simd_level(GYRO_SIMD_AUTO) == GYRO_OK);
   }
 
+  /* Batch overlap: OBB pairs. Unit boxes at x = 0 and x = d, the second turned 45 degrees
+   * about z (its half width along x is then sqrt(2)): overlapping while d <= 1 + sqrt(2). */
+  {
+    enum { M = 6 };
+    static float acx[M], acy[M], acz[M], ae[M], bcx[M], u0x[M], u0y[M], u1x[M], u1y[M], zero[M], one[M];
+    const float d[M] = {0.0f, 1.0f, 2.4f, 2.42f, 3.0f, 1.0f};
+    const uint32_t expect[M] = {GYRO_OVERLAPPING, GYRO_OVERLAPPING, GYRO_OVERLAPPING, GYRO_SEPARATED, GYRO_SEPARATED,
+                                GYRO_INVALID_INPUT};
+    const float s = 0.70710678f;
+    gyro_shape_soa a, b;
+    uint32_t out[M];
+    float sep[M];
+    memset(&a, 0, sizeof a), memset(&b, 0, sizeof b);
+    for (i = 0; i < M; ++i) {
+      acx[i] = 0, acy[i] = 0, acz[i] = 0, ae[i] = 1, bcx[i] = d[i], zero[i] = 0, one[i] = 1;
+      u0x[i] = s, u0y[i] = s, u1x[i] = -s, u1y[i] = s;
+    }
+    ae[M - 1] = NAN; /* the last pair is invalid */
+    a.type = GYRO_SHAPE_OBB, b.type = GYRO_SHAPE_OBB;
+    a.as.obb.cx = acx, a.as.obb.cy = acy, a.as.obb.cz = acz, a.as.obb.ex = ae, a.as.obb.ey = one, a.as.obb.ez = one;
+    a.as.obb.u0x = one, a.as.obb.u0y = zero, a.as.obb.u0z = zero, a.as.obb.u1x = zero, a.as.obb.u1y = one;
+    a.as.obb.u1z = zero, a.as.obb.u2x = zero, a.as.obb.u2y = zero, a.as.obb.u2z = one;
+    b.as.obb = a.as.obb;
+    b.as.obb.cx = bcx, b.as.obb.ex = one;
+    b.as.obb.u0x = u0x, b.as.obb.u0y = u0y, b.as.obb.u1x = u1x, b.as.obb.u1y = u1y;
+    CHECK(sizeof(gyro_shape_soa) == 8 + 15 * sizeof(void*));
+    CHECK(gyro_overlap_pairwise(&a, &b, M, out, 0) == GYRO_OK);
+    for (i = 0; i < M; ++i) CHECK(out[i] == expect[i]);
+    CHECK(gyro_overlap_pairwise(&b, &a, M, out, 0) == GYRO_OK); /* symmetric */
+    for (i = 0; i < M; ++i) CHECK(out[i] == expect[i]);
+    CHECK(gyro_overlap_one_against_many(&a, &b, M - 1, out, 0) == GYRO_OK);
+    for (i = 0; i < M - 1; ++i) CHECK(out[i] == expect[i]);
+    for (i = 0; i < M; ++i) out[i] = 99;
+    CHECK(gyro_overlap_pairwise(&a, &b, M, out, GYRO_BATCH_STRICT) == GYRO_STATUS_NON_FINITE);
+    CHECK(strstr(gyro_last_error(), "a.ex[5]") != NULL);
+    CHECK(gyro_overlap_pairwise(&a, &b, -1, out, 0) == GYRO_STATUS_INVALID_COUNT);
+    CHECK(gyro_overlap_pairwise(NULL, &b, M, out, 0) == GYRO_STATUS_NULL_ARGUMENT);
+    CHECK(gyro_overlap_pairwise(&a, &b, M, NULL, 0) == GYRO_STATUS_NULL_ARGUMENT);
+    CHECK(gyro_overlap_pairwise(&a, &b, M, out, 0x40) == GYRO_STATUS_INVALID_ARGUMENT);
+    b.type = 42;
+    CHECK(gyro_overlap_pairwise(&a, &b, M, out, 0) == GYRO_STATUS_INVALID_ARGUMENT);
+    b.type = GYRO_SHAPE_OBB;
+    for (i = 0; i < M; ++i) CHECK(out[i] == 99); /* nothing written on failure */
+    CHECK(gyro_obb_separation_pairwise(&a.as.obb, &b.as.obb, M - 1, sep) == GYRO_OK);
+    CHECK(fabsf(sep[0] + 2.0f) < 1e-5f); /* concentric: the least depth is along z, 1 + 1 */
+    CHECK(fabsf(sep[4] - (3.0f - 1.0f - 1.41421356f)) < 1e-5f);
+  }
+
   if (failures) {
     fprintf(stderr, "%d checks failed\n", failures);
     return 1;
