@@ -10,11 +10,13 @@
 namespace gyro::bench {
 void run_r1s(const Options&);
 void run_n1(const Options&);
+void run_g1(const Options&);
 
 namespace {
 const Workload kWorkloads[] = {
     {"R1S", "10k R1 rays x 10k spheres, closest hit, brute force, per SIMD level and thread count", run_r1s},
     {"N1", "10^6 OBB pairs, separating axes (boolean and depth); peers: Bullet box-box, libccd GJK/MPR/EPA", run_n1},
+    {"G1", "geometry kernels per SIMD level: pairwise overlaps (10^6 pairs), brute-force raycasts", run_g1},
 };
 
 int usage() {

@@ -101,7 +101,7 @@ GYRO_API const char* gyro_simd_level_name(gyro_simd_level level);
 GYRO_API gyro_status gyro_set_thread_count(uint32_t threads);
 GYRO_API uint32_t gyro_get_thread_count(void);
 
-/* ------------------------------------------------------------------ batch raycasts */
+/* ------------------------------------------------------------------ shape arrays, batch raycasts */
 
 /** Rays o + t d, t in [tmin, tmax]. tmin and tmax may be NULL (0 and +infinity). d need
  *  not be unit length (t is then in units of |d|); a zero or subnormal d never hits. */
@@ -176,21 +176,34 @@ typedef struct gyro_shape_soa {
 } gyro_shape_soa;
 
 /** Per-ray results. primitive: index of the primitive hit, or -1 (t is then +infinity and
- *  the normal 0). nx, ny, nz are optional: all three or all NULL. */
+ *  the other outputs 0). Optional outputs, NULL to skip: the unit normal nx, ny, nz (all
+ *  three or none; outward for solids, facing the ray for planes and triangles) and the
+ *  barycentric u, v of a triangle hit (point = a + u (b - a) + v (c - a); both or none). */
 typedef struct gyro_hit_soa {
   float* t;
   int32_t* primitive;
   float* nx;
   float* ny;
   float* nz;
+  float* u;
+  float* v;
 } gyro_hit_soa;
 
-/** Closest hit of every ray against every sphere (brute force). The hit is the first
- *  crossing of a sphere surface in [tmin, tmax]: a ray starting inside a sphere reports
- *  where it leaves. Ties go to the lower sphere index.
- *  Errors (nothing written): NULL_ARGUMENT, INVALID_COUNT (negative), NON_FINITE (NaN or
- *  infinite coordinate or radius), INVALID_ARGUMENT (negative radius, tmin < 0 or not
- *  finite, tmax NaN or < 0; tmax may be +infinity). */
+/** Closest hit of every ray against every primitive of one array (brute force). The hit is
+ *  the first crossing of a surface in [tmin, tmax]: a ray starting inside a solid reports
+ *  where it leaves; planes and triangles are double-sided; triangles are watertight. Ties go
+ *  to the lower primitive index. Errors (nothing written): NULL_ARGUMENT, INVALID_COUNT
+ *  (negative), NON_FINITE (NaN or infinite coordinate or size), INVALID_ARGUMENT (negative
+ *  size, unknown type, tmin < 0 or not finite, tmax NaN or < 0; tmax may be +infinity). */
+GYRO_API gyro_status gyro_raycast_closest(const gyro_ray_soa* rays, int32_t ray_count, const gyro_shape_soa* prims,
+                                          int32_t prim_count, const gyro_hit_soa* hits);
+
+/** Any hit (occlusion, line of sight): the lowest-index primitive crossed in [tmin, tmax]
+ *  and its t. Faster than the closest hit: it stops at the first. Same errors. */
+GYRO_API gyro_status gyro_raycast_any(const gyro_ray_soa* rays, int32_t ray_count, const gyro_shape_soa* prims,
+                                      int32_t prim_count, const gyro_hit_soa* hits);
+
+/** gyro_raycast_closest against spheres. */
 GYRO_API gyro_status gyro_raycast_spheres_closest(const gyro_ray_soa* rays, int32_t ray_count,
                                                   const gyro_sphere_soa* spheres, int32_t sphere_count,
                                                   const gyro_hit_soa* hits);

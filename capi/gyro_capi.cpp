@@ -9,6 +9,7 @@
 #include "gyro/runtime.hpp"
 
 #include <bit>
+#include <cstring>
 #include <new>
 
 namespace {
@@ -31,6 +32,7 @@ Status check_count(int32_t n, const char* name) {
 
 // The C views have exactly the C++ views' layout (asserted below), so they convert by copy.
 template <class To, class From> To view_of(const From& f) { return std::bit_cast<To>(f); }
+static_assert(sizeof(gyro_ray_soa) == sizeof(gyro::RaysView) && sizeof(gyro_hit_soa) == sizeof(gyro::HitsOut));
 static_assert(sizeof(gyro_sphere_soa) == sizeof(gyro::SpheresView) && sizeof(gyro_aabb_soa) == sizeof(gyro::AabbsView) &&
               sizeof(gyro_obb_soa) == sizeof(gyro::ObbsView) && sizeof(gyro_plane_soa) == sizeof(gyro::PlanesView) &&
               sizeof(gyro_triangle_soa) == sizeof(gyro::TrianglesView));
@@ -101,21 +103,45 @@ GYRO_API gyro_status gyro_set_thread_count(uint32_t threads) {
 }
 GYRO_API uint32_t gyro_get_thread_count(void) { return gyro::thread_count(); }
 
+// Shared by the three raycast entry points.
+static gyro_status raycast(const gyro_ray_soa* rays, int32_t ray_count, const gyro_shape_soa* prims, int32_t prim_count,
+                           const gyro_hit_soa* hits, bool any) {
+  return guarded([&]() -> Status {
+    GYRO_TRY(check_count(ray_count, "ray_count"));
+    GYRO_TRY(check_count(prim_count, "prim_count"));
+    if (!rays) return gyro::detail::fail(Status::null_argument, "rays is null");
+    GYRO_TRY(check_shapes(prims, "prims"));
+    if (!hits) return gyro::detail::fail(Status::null_argument, "hits is null");
+    const gyro::RaysView r = view_of<gyro::RaysView>(*rays);
+    const gyro::HitsOut h = view_of<gyro::HitsOut>(*hits);
+    const auto n = static_cast<std::size_t>(ray_count), m = static_cast<std::size_t>(prim_count);
+    return any ? gyro::raycast_any(r, n, shape_array_of(*prims), m, h)
+               : gyro::raycast_closest(r, n, shape_array_of(*prims), m, h);
+  });
+}
+
+GYRO_API gyro_status gyro_raycast_closest(const gyro_ray_soa* rays, int32_t ray_count, const gyro_shape_soa* prims,
+                                          int32_t prim_count, const gyro_hit_soa* hits) {
+  return raycast(rays, ray_count, prims, prim_count, hits, false);
+}
+
+GYRO_API gyro_status gyro_raycast_any(const gyro_ray_soa* rays, int32_t ray_count, const gyro_shape_soa* prims,
+                                      int32_t prim_count, const gyro_hit_soa* hits) {
+  return raycast(rays, ray_count, prims, prim_count, hits, true);
+}
+
 GYRO_API gyro_status gyro_raycast_spheres_closest(const gyro_ray_soa* rays, int32_t ray_count,
                                                   const gyro_sphere_soa* spheres, int32_t sphere_count,
                                                   const gyro_hit_soa* hits) {
-  return guarded([&]() -> Status {
-    GYRO_TRY(check_count(ray_count, "ray_count"));
-    GYRO_TRY(check_count(sphere_count, "sphere_count"));
-    if (!rays) return gyro::detail::fail(Status::null_argument, "rays is null");
-    if (!spheres) return gyro::detail::fail(Status::null_argument, "spheres is null");
-    if (!hits) return gyro::detail::fail(Status::null_argument, "hits is null");
-    const gyro::RaysView r{rays->ox, rays->oy, rays->oz, rays->dx, rays->dy, rays->dz, rays->tmin, rays->tmax};
-    const gyro::SpheresView s = view_of<gyro::SpheresView>(*spheres);
-    const gyro::HitsOut h{hits->t, hits->primitive, hits->nx, hits->ny, hits->nz};
-    return gyro::raycast_spheres_closest(r, static_cast<std::size_t>(ray_count), s,
-                                         static_cast<std::size_t>(sphere_count), h);
-  });
+  if (!spheres) {
+    gyro::detail::fail(Status::null_argument, "spheres is null");
+    return GYRO_STATUS_NULL_ARGUMENT;
+  }
+  gyro_shape_soa prims;
+  std::memset(&prims, 0, sizeof prims);
+  prims.type = GYRO_SHAPE_SPHERE;
+  prims.as.sphere = *spheres;
+  return raycast(rays, ray_count, &prims, sphere_count, hits, false);
 }
 
 GYRO_API gyro_status gyro_overlap_pairwise(const gyro_shape_soa* a, const gyro_shape_soa* b, int32_t count,

@@ -86,7 +86,7 @@ static double run(uint64_t* hash) {
   int r;
   rays.ox = ox, rays.oy = oy, rays.oz = oz, rays.dx = dx, rays.dy = dy, rays.dz = dz, rays.tmin = NULL, rays.tmax = tmax;
   spheres.cx = cx, spheres.cy = cy, spheres.cz = cz, spheres.r = cr;
-  hits.t = t, hits.primitive = prim, hits.nx = nx, hits.ny = ny, hits.nz = nz;
+  hits.t = t, hits.primitive = prim, hits.nx = nx, hits.ny = ny, hits.nz = nz, hits.u = NULL, hits.v = NULL;
   check(gyro_raycast_spheres_closest(&rays, RAYS, &spheres, SPHERES, &hits), "warm-up raycast");
   for (r = 0; r < REPS; ++r) {
     double start = now_ms();

@@ -3,11 +3,14 @@
 //
 // Ray semantics: a ray is o + t d with t in [tmin, tmax]; d need not be unit length (t is
 // then in units of |d|). The hit is the smallest t in range where the ray crosses a
-// primitive's surface: a ray that starts inside a sphere reports where it leaves.
-// A ray whose |d|^2 is zero, subnormal or overflows never hits. Ties go to the lowest
-// primitive index. Results are bit-identical at every SIMD level and thread count.
+// primitive's surface: a ray that starts inside a solid reports where it leaves; planes
+// and triangles are double-sided. A ray whose |d|^2 is zero, subnormal or overflows never
+// hits. Ties go to the lowest primitive index. Triangles are watertight: a ray through a
+// shared edge or vertex of a closed mesh hits it. Results are bit-identical at every SIMD
+// level and thread count, and equal to the scalar raycast() of gyro/raycast.hpp.
 #pragma once
 
+#include "gyro/batch_overlap.hpp"
 #include "gyro/shape_arrays.hpp"
 #include "gyro/status.hpp"
 
@@ -28,20 +31,36 @@ struct RaysView {
   const float* tmax = nullptr;
 };
 
-/// Per-ray results. primitive is the index hit, or -1 (then t is +infinity and the
-/// normal is 0). The normal arrays are optional: all three or none.
+/// Per-ray results. primitive is the index hit, or -1 (then t is +infinity and the other
+/// outputs 0). Optional outputs (null to skip): the unit normal (nx, ny, nz: all three or
+/// none; outward for solids, facing the ray for planes and triangles) and, for triangles,
+/// the barycentric coordinates u, v of the hit (point = a + u (b - a) + v (c - a); 0 for
+/// other primitives).
 struct HitsOut {
   float* t = nullptr;
   int32_t* primitive = nullptr;
   float* nx = nullptr;
   float* ny = nullptr;
   float* nz = nullptr;
+  float* u = nullptr;
+  float* v = nullptr;
 };
 
-/// Closest hit of every ray against every sphere. Checks everything first: null arrays,
-/// NaN or infinite coordinates (tmax may be +infinity), negative radii or tmin, counts
-/// above 2^31 - 1: each returns its status and writes nothing.
-Status raycast_spheres_closest(const RaysView& rays, std::size_t ray_count, const SpheresView& spheres,
-                               std::size_t sphere_count, const HitsOut& hits);
+/// Closest hit of every ray against every primitive of the array. Checks everything
+/// first: null arrays, NaN or infinite coordinates (tmax may be +infinity), negative sizes,
+/// tmin < 0, counts of 2^31 or more: each returns its status and writes nothing.
+Status raycast_closest(const RaysView& rays, std::size_t ray_count, const ShapeArray& prims, std::size_t prim_count,
+                       const HitsOut& hits);
+
+/// Any hit (occlusion, line of sight): the lowest-index primitive the ray crosses in
+/// [tmin, tmax], and its t. Stops early, so it is faster than closest hit.
+Status raycast_any(const RaysView& rays, std::size_t ray_count, const ShapeArray& prims, std::size_t prim_count,
+                   const HitsOut& hits);
+
+/// raycast_closest against spheres.
+inline Status raycast_spheres_closest(const RaysView& rays, std::size_t ray_count, const SpheresView& spheres,
+                                      std::size_t sphere_count, const HitsOut& hits) {
+  return raycast_closest(rays, ray_count, shape_array(spheres), sphere_count, hits);
+}
 
 }  // namespace gyro

@@ -28,3 +28,12 @@
 // GYRO_FOR_EACH_ARCH(X) expands X(level, namespace) for every level this build has; the
 // build writes it (CMake option GYRO_SIMD_LEVELS) into gyro_build_config.hpp.
 #include "gyro_build_config.hpp"
+
+// Kernel entry points inline their whole per-batch body (shapes stay in registers instead
+// of being returned through the stack). Sanitizer builds turn it off: instrumented and
+// flattened, one kernel file took minutes to compile, and speed does not matter there.
+#if defined(GYRO_NO_FLATTEN)
+#define GYRO_FLATTEN
+#else
+#define GYRO_FLATTEN [[gnu::flatten]]
+#endif

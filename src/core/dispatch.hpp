@@ -2,13 +2,13 @@
 //
 // A kernel header declares a kernel once, inside namespace gyro:
 //
-//   using ray_sphere_closest_fn = void(const RaySphereArgs&, std::size_t, std::size_t);
-//   GYRO_KERNEL(ray_sphere_closest, ray_sphere_closest_fn)
+//   using raycast_batch_fn = void(const RaycastArgs&, std::size_t, std::size_t);
+//   GYRO_KERNEL(raycast_batch, raycast_batch_fn)
 //
-// which declares gyro::arch_<level>::ray_sphere_closest for every level the build has and
-// gyro::detail::ray_sphere_closest_for(level). The kernel source defines the function in
+// which declares gyro::arch_<level>::raycast_batch for every level the build has and
+// gyro::detail::raycast_batch_for(level). The kernel source defines the function in
 // namespace gyro::GYRO_ARCH_NS and is listed in the build's kernel sources, so it is
-// compiled once per level. Call it as `GYRO_DISPATCH(ray_sphere_closest)(args, b, e)`.
+// compiled once per level. Call it as `GYRO_DISPATCH(raycast_batch)(args, b, e)`.
 #pragma once
 
 #include "core/arch.hpp"

@@ -1,13 +1,15 @@
-// gyro::raycast_spheres_closest: checks the whole input, then runs the kernel over fixed
-// chunks of rays on the configured SIMD level and threads.
+// gyro::raycast_closest / raycast_any: check the whole input, run the kernel over fixed
+// chunks of rays, then fill the optional per-hit outputs (normal, barycentrics) with the
+// scalar instantiation of the same templates, once per ray, whatever the level.
 #include "gyro/batch_raycast.hpp"
 
 #include "core/float_env.hpp"
 #include "core/parallel.hpp"
 #include "core/validate.hpp"
-#include "geometry/ray_sphere.hpp"
-
-#include <cmath>
+#include "geometry/ray_lanes.hpp"
+#include "geometry/ray_triangle_lanes.hpp"
+#include "geometry/raycast_batch.hpp"
+#include "geometry/shape_checks.hpp"
 
 namespace gyro {
 namespace {
@@ -15,6 +17,7 @@ namespace {
 using detail::fail;
 using detail::require_finite;
 using detail::require_not_null;
+namespace lanes = GYRO_ARCH_NS;
 
 constexpr std::size_t kMaxCount = 0x7FFFFFFF;
 // Rays per chunk: a multiple of 16 so every SIMD level runs full batches inside a chunk.
@@ -46,63 +49,72 @@ Status check_rays(const RaysView& r, std::size_t n) {
   return Status::ok;
 }
 
-Status check_spheres(const SpheresView& s, std::size_t n) {
-  GYRO_TRY(require_not_null(s.cx, "spheres.cx"));
-  GYRO_TRY(require_not_null(s.cy, "spheres.cy"));
-  GYRO_TRY(require_not_null(s.cz, "spheres.cz"));
-  GYRO_TRY(require_not_null(s.r, "spheres.r"));
-  GYRO_TRY(require_finite(s.cx, n, "spheres.cx"));
-  GYRO_TRY(require_finite(s.cy, n, "spheres.cy"));
-  GYRO_TRY(require_finite(s.cz, n, "spheres.cz"));
-  GYRO_TRY(require_finite(s.r, n, "spheres.r"));
-  for (std::size_t i = 0; i < n; ++i)
-    if (s.r[i] < 0.0f) return fail(Status::invalid_argument, "spheres.r[%zu] = %g is negative", i, double(s.r[i]));
-  return Status::ok;
+// Normal and barycentrics of ray i's hit on primitive k at t (scalar: the same bits at every level).
+void hit_details(const RaysView& rays, std::size_t i, const ShapeArray& p, std::size_t k, float t, float n[3],
+                 float uv[2]) {
+  const lanes::RayL<float> ray{{rays.ox[i], rays.oy[i], rays.oz[i]}, {rays.dx[i], rays.dy[i], rays.dz[i]}};
+  lanes::V3<float> normal{0.0f, 0.0f, 0.0f};
+  uv[0] = uv[1] = 0.0f;
+  switch (p.type) {
+    case ShapeType::sphere: normal = lanes::ray_sphere_normal(ray, lanes::splat_sphere<float>(p.spheres, k), t); break;
+    case ShapeType::aabb: normal = lanes::ray_aabb_normal(ray, lanes::splat_aabb<float>(p.aabbs, k), t); break;
+    case ShapeType::obb: normal = lanes::ray_obb_normal(ray, lanes::splat_obb<float>(p.obbs, k), t); break;
+    case ShapeType::plane: normal = lanes::ray_plane_normal(ray, lanes::splat_plane<float>(p.planes, k)); break;
+    case ShapeType::triangle: {
+      const auto tri = lanes::splat_triangle<float>(p.triangles, k);
+      normal = lanes::triangle_normal_facing(tri, ray.d);
+      // The template gives the weights of a, b, c; the API's u, v are those of b and c.
+      float wa, wb, wc;
+      lanes::ray_triangle_t(lanes::watertight_ray(ray), tri, 0.0f, __builtin_inff(), wa, wb, wc);
+      uv[0] = wb, uv[1] = wc;
+      break;
+    }
+  }
+  n[0] = normal.x, n[1] = normal.y, n[2] = normal.z;
 }
 
-}  // namespace
-
-Status raycast_spheres_closest(const RaysView& rays, std::size_t ray_count, const SpheresView& spheres,
-                               std::size_t sphere_count, const HitsOut& hits) {
-  if (ray_count > kMaxCount || sphere_count > kMaxCount)
-    return fail(Status::invalid_count, "counts must be below 2^31 (rays %zu, spheres %zu)", ray_count, sphere_count);
+Status run(const RaysView& rays, std::size_t ray_count, const ShapeArray& prims, std::size_t prim_count,
+           const HitsOut& hits, bool any_hit) {
+  if (ray_count > kMaxCount || prim_count > kMaxCount)
+    return fail(Status::invalid_count, "counts must be below 2^31 (rays %zu, primitives %zu)", ray_count, prim_count);
   if (ray_count == 0) return Status::ok;
   GYRO_TRY(require_not_null(hits.t, "hits.t"));
   GYRO_TRY(require_not_null(hits.primitive, "hits.primitive"));
   const int normals = (hits.nx != nullptr) + (hits.ny != nullptr) + (hits.nz != nullptr);
   if (normals != 0 && normals != 3) return fail(Status::null_argument, "hits.nx, ny, nz: give all three or none");
+  if ((hits.u == nullptr) != (hits.v == nullptr)) return fail(Status::null_argument, "hits.u, v: give both or none");
   GYRO_TRY(check_rays(rays, ray_count));
-  if (sphere_count) GYRO_TRY(check_spheres(spheres, sphere_count));
+  GYRO_TRY(detail::check_shape_array(prims, prim_count, "prims", true));
 
   detail::FloatEnvGuard env;
-  const RaySphereArgs args{rays.ox, rays.oy, rays.oz, rays.dx, rays.dy, rays.dz, rays.tmin, rays.tmax,
-                           spheres.cx, spheres.cy, spheres.cz, spheres.r, sphere_count,
-                           hits.t, reinterpret_cast<uint32_t*>(hits.primitive)};
-  auto* kernel = GYRO_DISPATCH(ray_sphere_closest);
+  const RaycastArgs args{rays.ox, rays.oy, rays.oz, rays.dx, rays.dy, rays.dz, rays.tmin, rays.tmax, prims,
+                         prim_count, any_hit, hits.t, reinterpret_cast<uint32_t*>(hits.primitive)};
+  auto* kernel = GYRO_DISPATCH(raycast_batch);
+  const bool details = normals == 3 || hits.u != nullptr;
   detail::parallel_for(ray_count, kRayChunk, [&](std::size_t b, std::size_t e) {
     kernel(args, b, e);
-    if (normals == 0) return;
-    // The normal is computed once per ray by this one scalar routine whatever the level.
+    if (!details) return;
     for (std::size_t i = b; i < e; ++i) {
+      float n[3] = {0.0f, 0.0f, 0.0f}, uv[2] = {0.0f, 0.0f};
       const int32_t k = hits.primitive[i];
-      float nx = 0.0f, ny = 0.0f, nz = 0.0f;
-      if (k >= 0) {
-        const float t = hits.t[i];
-        const float px = rays.ox[i] + t * rays.dx[i] - spheres.cx[k];
-        const float py = rays.oy[i] + t * rays.dy[i] - spheres.cy[k];
-        const float pz = rays.oz[i] + t * rays.dz[i] - spheres.cz[k];
-        const float len = std::sqrt((px * px + py * py) + pz * pz);
-        if (len > 0.0f) {
-          nx = px / len, ny = py / len, nz = pz / len;
-        } else {  // a point sphere: face the ray
-          const float dl = std::sqrt((rays.dx[i] * rays.dx[i] + rays.dy[i] * rays.dy[i]) + rays.dz[i] * rays.dz[i]);
-          nx = -rays.dx[i] / dl, ny = -rays.dy[i] / dl, nz = -rays.dz[i] / dl;
-        }
-      }
-      hits.nx[i] = nx, hits.ny[i] = ny, hits.nz[i] = nz;
+      if (k >= 0) hit_details(rays, i, prims, std::size_t(k), hits.t[i], n, uv);
+      if (normals) hits.nx[i] = n[0], hits.ny[i] = n[1], hits.nz[i] = n[2];
+      if (hits.u) hits.u[i] = uv[0], hits.v[i] = uv[1];
     }
   });
   return Status::ok;
+}
+
+}  // namespace
+
+Status raycast_closest(const RaysView& rays, std::size_t ray_count, const ShapeArray& prims, std::size_t prim_count,
+                       const HitsOut& hits) {
+  return run(rays, ray_count, prims, prim_count, hits, false);
+}
+
+Status raycast_any(const RaysView& rays, std::size_t ray_count, const ShapeArray& prims, std::size_t prim_count,
+                   const HitsOut& hits) {
+  return run(rays, ray_count, prims, prim_count, hits, true);
 }
 
 }  // namespace gyro

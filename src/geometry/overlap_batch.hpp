@@ -19,7 +19,7 @@ struct OverlapArgs {
 };
 
 /// True for the type pairs (in canonical order) the kernel implements.
-inline bool overlap_pair_supported(ShapeType a, ShapeType b) { return a == ShapeType::obb && b == ShapeType::obb; }
+inline bool overlap_pair_supported(ShapeType a, ShapeType b) { return a <= b; }
 
 /// Elements [begin, end).
 using overlap_batch_fn = void(const OverlapArgs&, std::size_t begin, std::size_t end);

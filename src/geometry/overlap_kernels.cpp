@@ -5,13 +5,9 @@
 // signed separation where asked). The shape tests are the lane templates the scalar API
 // runs, so lane k computes exactly what the scalar overlaps() computes for pair k. The
 // type dispatch happens once per call, outside the loops.
-#include "geometry/obb_obb_lanes.hpp"
 #include "geometry/overlap_batch.hpp"
-
-#if GYRO_OVERLAP_ALL_TYPES
 #include "geometry/overlap_lanes.hpp"
 #include "geometry/triangle_lanes.hpp"
-#endif
 
 namespace gyro::GYRO_ARCH_NS {
 namespace {
@@ -32,11 +28,7 @@ template <ShapeType TA, ShapeType TB> void run_pairs(const OverlapArgs& args, st
     using L = decltype(tag);
     const auto a = get_shape<TA, L>(args.a, args.a_single, i);
     const auto b = get_shape<TB, L>(args.b, args.b_single, i);
-    auto hit = L(0.0f) > L(0.0f);
-    if constexpr (TA == ShapeType::obb && TB == ShapeType::obb) hit = obb_obb_overlap(a, b);
-#if GYRO_OVERLAP_ALL_TYPES
-    else hit = overlaps(a, b);
-#endif
+    const auto hit = overlaps(a, b);
     const L verdict = select(hit, from_bits<L>(kOverlapping), from_bits<L>(kSeparated));
     store_bits(args.out + i, select(valid(a) && valid(b), verdict, from_bits<L>(kInvalidInput)));
   });
@@ -46,9 +38,7 @@ constexpr uint32_t pair_code(ShapeType a, ShapeType b) { return uint32_t(a) * 8u
 
 }  // namespace
 
-// flatten: inline the whole per-batch body, so shapes stay in registers instead of being
-// returned through the stack (a 16-lane OBB is 960 bytes).
-[[gnu::flatten]] void overlap_batch(const OverlapArgs& args, std::size_t begin, std::size_t end) {
+GYRO_FLATTEN void overlap_batch(const OverlapArgs& args, std::size_t begin, std::size_t end) {
   using T = ShapeType;
   if (args.out) {
     switch (pair_code(args.a.type, args.b.type)) {
@@ -56,13 +46,10 @@ constexpr uint32_t pair_code(ShapeType a, ShapeType b) { return uint32_t(a) * 8u
   case pair_code(T::A, T::B):              \
     run_pairs<T::A, T::B>(args, begin, end); \
     break;
-      GYRO_PAIR_(obb, obb)
-#if GYRO_OVERLAP_ALL_TYPES
       GYRO_PAIR_(sphere, sphere) GYRO_PAIR_(sphere, aabb) GYRO_PAIR_(sphere, obb) GYRO_PAIR_(sphere, plane)
-      GYRO_PAIR_(sphere, triangle) GYRO_PAIR_(aabb, aabb) GYRO_PAIR_(aabb, obb) GYRO_PAIR_(aabb, plane)
-      GYRO_PAIR_(aabb, triangle) GYRO_PAIR_(obb, plane) GYRO_PAIR_(obb, triangle) GYRO_PAIR_(plane, plane)
-      GYRO_PAIR_(plane, triangle) GYRO_PAIR_(triangle, triangle)
-#endif
+      GYRO_PAIR_(aabb, aabb) GYRO_PAIR_(aabb, obb) GYRO_PAIR_(aabb, plane) GYRO_PAIR_(obb, obb)
+      GYRO_PAIR_(obb, plane) GYRO_PAIR_(plane, plane) GYRO_PAIR_(sphere, triangle) GYRO_PAIR_(aabb, triangle)
+      GYRO_PAIR_(obb, triangle) GYRO_PAIR_(plane, triangle) GYRO_PAIR_(triangle, triangle)
 #undef GYRO_PAIR_
       default: break;
     }

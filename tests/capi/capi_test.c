@@ -74,7 +74,7 @@ int main(void) {
   rays.ox = ox, rays.oy = oy, rays.oz = oz, rays.dx = dx, rays.dy = dy, rays.dz = dz;
   rays.tmin = NULL, rays.tmax = NULL;
   spheres.cx = cx, spheres.cy = cy, spheres.cz = cz, spheres.r = cr;
-  hits.t = t, hits.primitive = prim, hits.nx = nx, hits.ny = ny, hits.nz = nz;
+  hits.t = t, hits.primitive = prim, hits.nx = nx, hits.ny = ny, hits.nz = nz, hits.u = NULL, hits.v = NULL;
 
   poison();
   CHECK(gyro_raycast_spheres_closest(&rays, N, &spheres, 3, &hits) == GYRO_OK);
@@ -171,6 +171,49 @@ int main(void) {
     CHECK(gyro_obb_separation_pairwise(&a.as.obb, &b.as.obb, M - 1, sep) == GYRO_OK);
     CHECK(fabsf(sep[0] + 2.0f) < 1e-5f); /* concentric: the least depth is along z, 1 + 1 */
     CHECK(fabsf(sep[4] - (3.0f - 1.0f - 1.41421356f)) < 1e-5f);
+  }
+
+  /* Batch raycasts against AABBs and triangles: closest and any hit. A row of unit boxes
+   * at x = 2, 4, 6 and a triangle in the plane x = 3; rays along +x from the origin. */
+  {
+    static float bcx[3] = {6, 2, 4}, bzero[3] = {0, 0, 0}, bone[3] = {1, 1, 1};
+    static float tax[1] = {3}, tay[1] = {-5}, taz[1] = {-5}, tbx[1] = {3}, tby[1] = {5}, tbz[1] = {-5};
+    static float tcx[1] = {3}, tcy[1] = {0}, tcz[1] = {5};
+    static float rox[2] = {0, 0}, roy[2] = {0, 0.5f}, roz[2] = {0, 0}, rdx[2] = {1, 1}, rdy[2] = {0, 0}, rdz[2] = {0, 0};
+    float rt[2], rnx[2], rny[2], rnz[2], ru[2], rv[2];
+    int32_t rp[2];
+    gyro_ray_soa r;
+    gyro_shape_soa boxes, tris;
+    gyro_hit_soa h;
+    memset(&boxes, 0, sizeof boxes), memset(&tris, 0, sizeof tris), memset(&h, 0, sizeof h);
+    r.ox = rox, r.oy = roy, r.oz = roz, r.dx = rdx, r.dy = rdy, r.dz = rdz, r.tmin = NULL, r.tmax = NULL;
+    boxes.type = GYRO_SHAPE_AABB;
+    boxes.as.aabb.cx = bcx, boxes.as.aabb.cy = bzero, boxes.as.aabb.cz = bzero;
+    boxes.as.aabb.ex = bone, boxes.as.aabb.ey = bone, boxes.as.aabb.ez = bone;
+    h.t = rt, h.primitive = rp, h.nx = rnx, h.ny = rny, h.nz = rnz;
+    CHECK(gyro_raycast_closest(&r, 2, &boxes, 3, &h) == GYRO_OK);
+    CHECK(rp[0] == 1 && rt[0] == 1.0f && rnx[0] == -1.0f); /* the box at x = 2, entered at x = 1 */
+    CHECK(gyro_raycast_any(&r, 2, &boxes, 3, &h) == GYRO_OK);
+    CHECK(rp[0] == 0 && rt[0] == 5.0f); /* any hit: the lowest index crossed, box 0 at x = 6 */
+    tris.type = GYRO_SHAPE_TRIANGLE;
+    tris.as.triangle.ax = tax, tris.as.triangle.ay = tay, tris.as.triangle.az = taz;
+    tris.as.triangle.bx = tbx, tris.as.triangle.by = tby, tris.as.triangle.bz = tbz;
+    tris.as.triangle.cx = tcx, tris.as.triangle.cy = tcy, tris.as.triangle.cz = tcz;
+    h.u = ru, h.v = rv;
+    CHECK(gyro_raycast_closest(&r, 2, &tris, 1, &h) == GYRO_OK);
+    CHECK(rp[0] == 0 && rt[0] == 3.0f && rnx[0] == -1.0f && rp[1] == 0);
+    /* hit point = a + u (b - a) + v (c - a) */
+    CHECK(fabsf(-5.0f + ru[1] * 10.0f + rv[1] * 5.0f - 0.5f) < 1e-5f && fabsf(-5.0f + rv[1] * 10.0f) < 1e-5f);
+    h.v = NULL; /* u without v */
+    CHECK(gyro_raycast_closest(&r, 2, &tris, 1, &h) == GYRO_STATUS_NULL_ARGUMENT);
+    h.v = rv;
+    tris.reserved = 1;
+    CHECK(gyro_raycast_closest(&r, 2, &tris, 1, &h) == GYRO_STATUS_INVALID_ARGUMENT);
+    tris.reserved = 0;
+    bone[1] = -1.0f;
+    CHECK(gyro_raycast_closest(&r, 2, &boxes, 3, &h) == GYRO_STATUS_INVALID_ARGUMENT);
+    CHECK(strstr(gyro_last_error(), "prims.ex[1]") != NULL);
+    bone[1] = 1.0f;
   }
 
   if (failures) {

@@ -1,7 +1,10 @@
 // Batch overlap kernels: N1 boxes against the binary64 separating-axis reference, bit
 // identity across SIMD levels, threads and batch splits, per-element invalid flags, bad input.
 #include "gyro/batch_overlap.hpp"
+#include "gyro/overlap.hpp"
 #include "gyro/runtime.hpp"
+#include "gyro/triangle.hpp"
+#include "random_shapes.hpp"
 #include "reference.hpp"
 #include "workloads.hpp"
 
@@ -142,6 +145,60 @@ TEST_F(BatchOverlap, InvalidElementsAreFlaggedOrRejected) {
   EXPECT_EQ(overlap_pairwise(unknown, shape_array(clean.b.view()), n, out.data()), Status::invalid_argument);
   EXPECT_EQ(out, poison);
   EXPECT_EQ(overlap_pairwise(ShapeArray{}, ShapeArray{}, 0, nullptr), Status::ok);  // nothing to do
+}
+
+// ---- every pair type: the batch verdict equals the scalar overlaps() at every level
+
+bool scalar_overlap(const RandomShapes& a, std::size_t i, const RandomShapes& b, std::size_t j) {
+  auto with_b = [&](const auto& x) -> bool {
+    switch (b.type) {
+      case ShapeType::sphere: return overlaps(x, b.spheres[j]);
+      case ShapeType::aabb: return overlaps(x, b.aabbs[j]);
+      case ShapeType::obb: return overlaps(x, b.obbs[j]);
+      case ShapeType::plane: return overlaps(x, b.planes[j]);
+      case ShapeType::triangle: return overlaps(x, b.triangles[j]);
+    }
+    return false;
+  };
+  switch (a.type) {
+    case ShapeType::sphere: return with_b(a.spheres[i]);
+    case ShapeType::aabb: return with_b(a.aabbs[i]);
+    case ShapeType::obb: return with_b(a.obbs[i]);
+    case ShapeType::plane: return with_b(a.planes[i]);
+    case ShapeType::triangle: return with_b(a.triangles[i]);
+  }
+  return false;
+}
+
+TEST_F(BatchOverlap, EveryPairTypeMatchesTheScalarApiAtEveryLevel) {
+  const std::size_t n = 3001;
+  SplitMix64 rng(77);
+  int pairs = 0;
+  for (uint32_t ta = 1; ta <= 5; ++ta)
+    for (uint32_t tb = 1; tb <= 5; ++tb) {
+      const RandomShapes a = random_shapes(ShapeType(ta), n, rng), b = random_shapes(ShapeType(tb), n, rng);
+      std::vector<uint32_t> want(n), one_want(n), got(n);
+      std::size_t hits = 0;
+      for (std::size_t i = 0; i < n; ++i) {
+        want[i] = scalar_overlap(a, i, b, i) ? kOverlapping : kSeparated;
+        one_want[i] = scalar_overlap(a, 0, b, i) ? kOverlapping : kSeparated;
+        hits += want[i] == kOverlapping;
+      }
+      ++pairs;
+      EXPECT_GT(hits, 0u) << ta << "," << tb << ": the random scene should have overlaps";
+      if (!(ta == 4 && tb == 4)) {  // random planes always meet
+        EXPECT_LT(hits, n) << ta << "," << tb;
+      }
+      for (uint32_t v = 1; v <= 5; ++v) {
+        if (!simd_level_available(SimdLevel(v))) continue;
+        set_simd_level(SimdLevel(v));
+        ASSERT_EQ(overlap_pairwise(a.view(), b.view(), n, got.data()), Status::ok);
+        EXPECT_EQ(got, want) << "types " << ta << "," << tb << " at " << simd_level_name(SimdLevel(v));
+        ASSERT_EQ(overlap_one_against_many(a.view(), b.view(), n, got.data()), Status::ok);
+        EXPECT_EQ(got, one_want) << "one-against-many, types " << ta << "," << tb << " at " << simd_level_name(SimdLevel(v));
+      }
+    }
+  EXPECT_EQ(pairs, 25);
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 #include "gyro/batch_raycast.hpp"
 #include "gyro/math.hpp"
 #include "math/trig_batch.hpp"
+#include "random_shapes.hpp"
 #include "workloads.hpp"
 
 #include <bit>
@@ -142,12 +143,58 @@ uint64_t scene_n1_overlap() {
   return h.digest();
 }
 
+// Random shapes of every type (tests/support/random_shapes: only sqrt, so the inputs are
+// the same bits on every libm), all 15 overlap pair types, and raycasts (closest and any
+// hit, normals and barycentrics) against every primitive type.
+uint64_t scene_geometry_batch() {
+  const std::size_t n = 2003, rays_n = 997, prims_n = 211;
+  static const auto shapes = [](std::size_t count, uint64_t seed) {
+    std::vector<RandomShapes> all;
+    SplitMix64 rng(seed);
+    for (uint32_t t = 1; t <= 5; ++t) all.push_back(random_shapes(ShapeType(t), count, rng, 8.0f));
+    return all;
+  };
+  static const std::vector<RandomShapes> a = shapes(n, 11), b = shapes(n, 12), p = shapes(prims_n, 13);
+  static const RaySet rays = [] {
+    RaySet r;
+    SplitMix64 rng(14);
+    for (std::size_t i = 0; i < rays_n; ++i) {
+      const float o[3] = {float(10 * rng.u() - 1), float(10 * rng.u() - 1), float(10 * rng.u() - 1)};
+      const float d[3] = {float(rng.u() - 0.5), float(rng.u() - 0.5), float(rng.u() - 0.5)};
+      r.push(o[0], o[1], o[2], d[0], d[1], d[2]);
+    }
+    return r;
+  }();
+  detail::StateHasher h;
+  std::vector<uint32_t> out(n);
+  for (uint32_t ta = 1; ta <= 5; ++ta)
+    for (uint32_t tb = ta; tb <= 5; ++tb) {
+      if (overlap_pairwise(a[ta - 1].view(), b[tb - 1].view(), n, out.data()) != Status::ok) return 0;
+      h.add_u32s(out);
+    }
+  HitSet hits(rays_n);
+  std::vector<float> u(rays_n), v(rays_n);
+  for (uint32_t t = 1; t <= 5; ++t) {
+    HitsOut o = hits.out();
+    o.u = u.data(), o.v = v.data();
+    if (raycast_closest(rays.view(), rays_n, p[t - 1].view(), prims_n, o) != Status::ok) return 0;
+    h.add_floats(hits.t), h.add_floats(hits.nx), h.add_floats(hits.ny), h.add_floats(hits.nz), h.add_floats(u),
+        h.add_floats(v);
+    for (int32_t k : hits.primitive) h.add_u32(uint32_t(k));
+    if (raycast_any(rays.view(), rays_n, p[t - 1].view(), prims_n, hits.out(false)) != Status::ok) return 0;
+    h.add_floats(hits.t);
+    for (int32_t k : hits.primitive) h.add_u32(uint32_t(k));
+  }
+  return h.digest();
+}
+
 const DetScene kScenes[] = {
     {"trig", scene_trig, 0x69125c38406c536bull},
-    {"r1s_2k", scene_r1s_2k, 0xe7b85af4156f94a1ull},
-    {"rays_edge_cases", scene_rays_edge_cases, 0xe8bc1c3d106c89c5ull},
+    {"r1s_2k", scene_r1s_2k, 0x8ef0b58be8aab651ull},
+    {"rays_edge_cases", scene_rays_edge_cases, 0x2155c274b0cbd76bull},
     {"math_library", scene_math_library, 0x3de9709813336bbcull},
     {"n1_overlap", scene_n1_overlap, 0xad908dedd18ef994ull},
+    {"geometry_batch", scene_geometry_batch, 0x1d2f55ce85f87c4full},
 };
 
 }  // namespace

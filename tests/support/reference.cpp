@@ -58,6 +58,59 @@ RaycastError compare_raycast(const HitSet& hits, const std::vector<RefHit>& ref,
   return e;
 }
 
+double ref_sphere_sphere_gap(D3 c1, double r1, D3 c2, double r2) {
+  const double dx = c1.x - c2.x, dy = c1.y - c2.y, dz = c1.z - c2.z;
+  return std::sqrt(dx * dx + dy * dy + dz * dz) - (r1 + r2);
+}
+
+double ref_sphere_aabb_gap(D3 c, double r, D3 bc, D3 be) {
+  auto axis = [](double p, double center, double half) {
+    const double lo = center - half, hi = center + half;
+    const double q = p < lo ? lo : (p > hi ? hi : p);
+    return p - q;
+  };
+  const double dx = axis(c.x, bc.x, be.x), dy = axis(c.y, bc.y, be.y), dz = axis(c.z, bc.z, be.z);
+  return std::sqrt(dx * dx + dy * dy + dz * dz) - r;
+}
+
+double ref_aabb_aabb_gap(D3 ac, D3 ae, D3 bc, D3 be) {
+  const double gx = std::abs(ac.x - bc.x) - (ae.x + be.x), gy = std::abs(ac.y - bc.y) - (ae.y + be.y),
+               gz = std::abs(ac.z - bc.z) - (ae.z + be.z);
+  return std::max(gx, std::max(gy, gz));
+}
+
+double ref_ray_aabb_t(D3 o, D3 d, D3 bc, D3 be) {
+  double t0 = -INFINITY, t1 = INFINITY;
+  const double oo[3] = {o.x, o.y, o.z}, dd[3] = {d.x, d.y, d.z}, c[3] = {bc.x, bc.y, bc.z}, e[3] = {be.x, be.y, be.z};
+  for (int k = 0; k < 3; ++k) {
+    const double lo = c[k] - e[k], hi = c[k] + e[k];
+    if (dd[k] == 0) {
+      if (oo[k] < lo || oo[k] > hi) return INFINITY;
+      continue;
+    }
+    double a = (lo - oo[k]) / dd[k], b = (hi - oo[k]) / dd[k];
+    if (a > b) std::swap(a, b);
+    t0 = std::max(t0, a), t1 = std::min(t1, b);
+  }
+  if (t0 > t1 || t1 < 0) return INFINITY;
+  return t0 >= 0 ? t0 : t1;
+}
+
+double ref_ray_triangle_t(D3 o, D3 d, D3 a, D3 b, D3 c) {
+  const double e1[3] = {b.x - a.x, b.y - a.y, b.z - a.z}, e2[3] = {c.x - a.x, c.y - a.y, c.z - a.z};
+  const double dd[3] = {d.x, d.y, d.z};
+  const double p[3] = {dd[1] * e2[2] - dd[2] * e2[1], dd[2] * e2[0] - dd[0] * e2[2], dd[0] * e2[1] - dd[1] * e2[0]};
+  const double det = e1[0] * p[0] + e1[1] * p[1] + e1[2] * p[2];
+  if (det == 0) return INFINITY;
+  const double s[3] = {o.x - a.x, o.y - a.y, o.z - a.z};
+  const double u = (s[0] * p[0] + s[1] * p[1] + s[2] * p[2]) / det;
+  const double q[3] = {s[1] * e1[2] - s[2] * e1[1], s[2] * e1[0] - s[0] * e1[2], s[0] * e1[1] - s[1] * e1[0]};
+  const double v = (dd[0] * q[0] + dd[1] * q[1] + dd[2] * q[2]) / det;
+  if (u < 0 || v < 0 || u + v > 1) return INFINITY;
+  const double t = (e2[0] * q[0] + e2[1] * q[1] + e2[2] * q[2]) / det;
+  return t >= 0 ? t : INFINITY;
+}
+
 double ref_obb_obb_separation(const BoxSet& A, std::size_t i, const BoxSet& B, std::size_t j) {
   struct Box {
     double c[3], e[3], u[3][3];

@@ -41,4 +41,20 @@ RaycastError compare_raycast(const HitSet& hits, const std::vector<RefHit>& ref,
 /// gap divided by a tiny length is ill-conditioned, and face axes decide those pairs.
 double ref_obb_obb_separation(const BoxSet& a, std::size_t i, const BoxSet& b, std::size_t j);
 
+// Small binary64 references for the benchmark error figures (float inputs, double math).
+struct D3 {
+  double x, y, z;
+};
+inline D3 d3(float x, float y, float z) { return {x, y, z}; }
+/// Sphere-sphere: signed gap |c1 - c2| - (r1 + r2) (<= 0 overlapping).
+double ref_sphere_sphere_gap(D3 c1, double r1, D3 c2, double r2);
+/// Sphere-AABB: signed gap |clamp(c) - c| - r (<= 0 overlapping; 0 also when inside).
+double ref_sphere_aabb_gap(D3 c, double r, D3 bc, D3 be);
+/// AABB-AABB: largest per-axis gap (<= 0 overlapping).
+double ref_aabb_aabb_gap(D3 ac, D3 ae, D3 bc, D3 be);
+/// Ray-AABB by slabs in binary64: first surface crossing t in [0, inf), or inf.
+double ref_ray_aabb_t(D3 o, D3 d, D3 bc, D3 be);
+/// Ray-triangle (double-sided, Moller-Trumbore in binary64): t >= 0 or inf.
+double ref_ray_triangle_t(D3 o, D3 d, D3 a, D3 b, D3 c);
+
 }  // namespace gyro::testing

@@ -1,0 +1,15 @@
+// Input checks for SoA shape arrays, shared by the batch calls.
+#pragma once
+
+#include "gyro/batch_overlap.hpp"
+
+#include <cstddef>
+
+namespace gyro::detail {
+
+/// Checks that the type is known and, when n > 0, that every component pointer is set;
+/// with strict, also that elements [0, n) are finite with non-negative sizes. Reports the
+/// array as `which`.
+Status check_shape_array(const ShapeArray& s, std::size_t n, const char* which, bool strict);
+
+}  // namespace gyro::detail
