@@ -65,83 +65,157 @@ using Arch = xsimd::avx512f;
 using Arch = xsimd::neon64;
 #endif
 
-using batch_f = xsimd::batch<float, Arch>;
-using batch_u = xsimd::batch<uint32_t, Arch>;
-using batch_b = xsimd::batch_bool<float, Arch>;
-static_assert(batch_f::size == GYRO_ARCH_WIDTH, "lane width does not match the level");
-
-struct vmask {
-  batch_b m;
-  friend vmask operator&&(vmask a, vmask b) { return {a.m & b.m}; }
-  friend vmask operator||(vmask a, vmask b) { return {a.m | b.m}; }
-  friend vmask operator!(vmask a) { return {~a.m}; }
+// The SIMD lane is generic over the xsimd architecture so a level can also offer a lane of
+// fixed width 4 (Quad below: one BVH node's four children, one leaf's four triangles). The
+// operations are elementwise, so a 4-wide SSE lane inside the AVX2 kernels computes exactly
+// what the AVX2 lane (or the float lane) computes for the same element.
+template <class A> struct vmask_t {
+  xsimd::batch_bool<float, A> m;
+  friend vmask_t operator&&(vmask_t a, vmask_t b) { return {a.m & b.m}; }
+  friend vmask_t operator||(vmask_t a, vmask_t b) { return {a.m | b.m}; }
+  friend vmask_t operator!(vmask_t a) { return {~a.m}; }
 };
 
-struct vfloat {
+template <class A> struct vfloat_t {
+  using batch_f = xsimd::batch<float, A>;
+  using mask = vmask_t<A>;
   batch_f v;
-  vfloat() = default;
-  vfloat(float s) : v(s) {}  // NOLINT: broadcast, implicit so `x + 1.0f` reads naturally
-  explicit vfloat(batch_f b) : v(b) {}
+  vfloat_t() = default;
+  vfloat_t(float s) : v(s) {}  // NOLINT: broadcast, implicit so `x + 1.0f` reads naturally
+  explicit vfloat_t(batch_f b) : v(b) {}
 
-  friend vfloat operator+(vfloat a, vfloat b) { return vfloat(a.v + b.v); }
-  friend vfloat operator-(vfloat a, vfloat b) { return vfloat(a.v - b.v); }
-  friend vfloat operator*(vfloat a, vfloat b) { return vfloat(a.v * b.v); }
-  friend vfloat operator/(vfloat a, vfloat b) {
+  friend vfloat_t operator+(vfloat_t a, vfloat_t b) { return vfloat_t(a.v + b.v); }
+  friend vfloat_t operator-(vfloat_t a, vfloat_t b) { return vfloat_t(a.v - b.v); }
+  friend vfloat_t operator*(vfloat_t a, vfloat_t b) { return vfloat_t(a.v * b.v); }
+  friend vfloat_t operator/(vfloat_t a, vfloat_t b) {
 #if defined(GYRO_ARCH_NEON)
-    return vfloat(batch_f(vdivq_f32(a.v, b.v)));  // xsimd's neon64 divide is an estimate
+    return vfloat_t(batch_f(vdivq_f32(a.v, b.v)));  // xsimd's neon64 divide is an estimate
 #else
-    return vfloat(a.v / b.v);
+    return vfloat_t(a.v / b.v);
 #endif
   }
   // Negation flips the sign bit (xsimd's AVX-512 negate computes 0 - x, so -(+0) = +0).
-  friend vfloat operator-(vfloat a) { return vfloat(xsimd::bitwise_xor(a.v, batch_f(-0.0f))); }
-  vfloat& operator+=(vfloat b) { v = v + b.v; return *this; }
-  vfloat& operator-=(vfloat b) { v = v - b.v; return *this; }
-  vfloat& operator*=(vfloat b) { v = v * b.v; return *this; }
-  vfloat& operator/=(vfloat b) { *this = *this / b; return *this; }
+  friend vfloat_t operator-(vfloat_t a) { return vfloat_t(xsimd::bitwise_xor(a.v, batch_f(-0.0f))); }
+  vfloat_t& operator+=(vfloat_t b) { v = v + b.v; return *this; }
+  vfloat_t& operator-=(vfloat_t b) { v = v - b.v; return *this; }
+  vfloat_t& operator*=(vfloat_t b) { v = v * b.v; return *this; }
+  vfloat_t& operator/=(vfloat_t b) { *this = *this / b; return *this; }
 
-  friend vmask operator<(vfloat a, vfloat b) { return {a.v < b.v}; }
-  friend vmask operator<=(vfloat a, vfloat b) { return {a.v <= b.v}; }
-  friend vmask operator>(vfloat a, vfloat b) { return {a.v > b.v}; }
-  friend vmask operator>=(vfloat a, vfloat b) { return {a.v >= b.v}; }
-  friend vmask operator==(vfloat a, vfloat b) { return {a.v == b.v}; }
+  friend mask operator<(vfloat_t a, vfloat_t b) { return {a.v < b.v}; }
+  friend mask operator<=(vfloat_t a, vfloat_t b) { return {a.v <= b.v}; }
+  friend mask operator>(vfloat_t a, vfloat_t b) { return {a.v > b.v}; }
+  friend mask operator>=(vfloat_t a, vfloat_t b) { return {a.v >= b.v}; }
+  friend mask operator==(vfloat_t a, vfloat_t b) { return {a.v == b.v}; }
   // Not xsimd's !=: on AVX/AVX-512 it is an ordered compare (false when a lane is NaN)
   // while SSE2, NEON and C++ give true. !(a == b) is C++'s semantics on every level.
-  friend vmask operator!=(vfloat a, vfloat b) { return {~(a.v == b.v)}; }
+  friend mask operator!=(vfloat_t a, vfloat_t b) { return {~(a.v == b.v)}; }
 };
 
-inline vfloat select(vmask m, vfloat a, vfloat b) { return vfloat(xsimd::select(m.m, a.v, b.v)); }
-inline vfloat min(vfloat a, vfloat b) { return select(a < b, a, b); }
-inline vfloat max(vfloat a, vfloat b) { return select(a > b, a, b); }
-inline vfloat sqrt(vfloat a) {
+template <class A> inline vfloat_t<A> select(vmask_t<A> m, vfloat_t<A> a, vfloat_t<A> b) {
+  return vfloat_t<A>(xsimd::select(m.m, a.v, b.v));
+}
+template <class A> inline vfloat_t<A> min(vfloat_t<A> a, vfloat_t<A> b) { return select(a < b, a, b); }
+template <class A> inline vfloat_t<A> max(vfloat_t<A> a, vfloat_t<A> b) { return select(a > b, a, b); }
+template <class A> inline vfloat_t<A> sqrt(vfloat_t<A> a) {
 #if defined(GYRO_ARCH_NEON)
-  return vfloat(batch_f(vsqrtq_f32(a.v)));  // xsimd's neon64 float sqrt is an estimate
+  return vfloat_t<A>(xsimd::batch<float, A>(vsqrtq_f32(a.v)));  // xsimd's neon64 float sqrt is an estimate
 #else
-  return vfloat(xsimd::sqrt(a.v));
+  return vfloat_t<A>(xsimd::sqrt(a.v));
 #endif
 }
 // Explicit masks: xsimd 8.1's bitwise_andnot(x, y) computes ~x & y (Intel's operand
 // order), not what its name suggests.
-inline batch_f sign_mask() { return xsimd::bitwise_cast<batch_f>(batch_u(0x80000000u)); }
-inline batch_f magnitude_mask() { return xsimd::bitwise_cast<batch_f>(batch_u(0x7fffffffu)); }
-inline vfloat abs(vfloat a) { return vfloat(xsimd::bitwise_and(a.v, magnitude_mask())); }
-inline vfloat copysign(vfloat magnitude, vfloat sign) {
-  return vfloat(xsimd::bitwise_or(xsimd::bitwise_and(magnitude.v, magnitude_mask()), xsimd::bitwise_and(sign.v, sign_mask())));
+template <class A> inline xsimd::batch<float, A> sign_mask() {
+  return xsimd::bitwise_cast<xsimd::batch<float, A>>(xsimd::batch<uint32_t, A>(0x80000000u));
 }
-inline bool any(vmask m) { return xsimd::any(m.m); }
-inline bool all(vmask m) { return xsimd::all(m.m); }
+template <class A> inline xsimd::batch<float, A> magnitude_mask() {
+  return xsimd::bitwise_cast<xsimd::batch<float, A>>(xsimd::batch<uint32_t, A>(0x7fffffffu));
+}
+template <class A> inline vfloat_t<A> abs(vfloat_t<A> a) { return vfloat_t<A>(xsimd::bitwise_and(a.v, magnitude_mask<A>())); }
+template <class A> inline vfloat_t<A> copysign(vfloat_t<A> magnitude, vfloat_t<A> sign) {
+  return vfloat_t<A>(xsimd::bitwise_or(xsimd::bitwise_and(magnitude.v, magnitude_mask<A>()),
+                                       xsimd::bitwise_and(sign.v, sign_mask<A>())));
+}
+template <class A> inline bool any(vmask_t<A> m) { return xsimd::any(m.m); }
+template <class A> inline bool all(vmask_t<A> m) { return xsimd::all(m.m); }
 
-template <> struct lane_traits<vfloat> {
+template <class A> struct lane_traits<vfloat_t<A>> {
+  using batch_f = xsimd::batch<float, A>;
+  using batch_u = xsimd::batch<uint32_t, A>;
   static constexpr std::size_t width = batch_f::size;
-  static vfloat load(const float* p) { return vfloat(batch_f::load_unaligned(p)); }
-  static void store(float* p, vfloat v) { v.v.store_unaligned(p); }
-  static void store_bits(uint32_t* p, vfloat v) { xsimd::bitwise_cast<batch_u>(v.v).store_unaligned(p); }
-  static vfloat from_bits(uint32_t bits) { return vfloat(xsimd::bitwise_cast<batch_f>(batch_u(bits))); }
+  static vfloat_t<A> load(const float* p) { return vfloat_t<A>(batch_f::load_unaligned(p)); }
+  static void store(float* p, vfloat_t<A> v) { v.v.store_unaligned(p); }
+  static void store_bits(uint32_t* p, vfloat_t<A> v) { xsimd::bitwise_cast<batch_u>(v.v).store_unaligned(p); }
+  static vfloat_t<A> from_bits(uint32_t bits) { return vfloat_t<A>(xsimd::bitwise_cast<batch_f>(batch_u(bits))); }
 };
+
+using vfloat = vfloat_t<Arch>;
+using vmask = vmask_t<Arch>;
+static_assert(lane_traits<vfloat>::width == GYRO_ARCH_WIDTH, "lane width does not match the level");
+
+// Quad: a lane of exactly 4 floats at every SIMD level (the float loop at the scalar level).
+#if defined(GYRO_ARCH_NEON)
+using Quad = vfloat_t<xsimd::neon64>;
+#else
+using Quad = vfloat_t<xsimd::sse2>;
+#endif
+static_assert(lane_traits<Quad>::width == 4, "Quad must be 4 wide");
 
 using Wide = vfloat;
 #else
 using Wide = float;
+
+// Quad at the scalar level: four floats, each operation the float lane's, element by element.
+struct QuadMask {
+  bool m[4];
+  friend QuadMask operator&&(QuadMask a, QuadMask b) { return {{a.m[0] && b.m[0], a.m[1] && b.m[1], a.m[2] && b.m[2], a.m[3] && b.m[3]}}; }
+  friend QuadMask operator||(QuadMask a, QuadMask b) { return {{a.m[0] || b.m[0], a.m[1] || b.m[1], a.m[2] || b.m[2], a.m[3] || b.m[3]}}; }
+  friend QuadMask operator!(QuadMask a) { return {{!a.m[0], !a.m[1], !a.m[2], !a.m[3]}}; }
+};
+
+struct Quad {
+  float v[4];
+  Quad() = default;
+  Quad(float s) : v{s, s, s, s} {}  // NOLINT: broadcast, as vfloat
+  template <class F> static Quad map(F f) { return Quad(f(0), f(1), f(2), f(3), 0); }
+  template <class F> static QuadMask test(F f) { return {{f(0), f(1), f(2), f(3)}}; }
+  friend Quad operator+(Quad a, Quad b) { return map([&](int k) { return a.v[k] + b.v[k]; }); }
+  friend Quad operator-(Quad a, Quad b) { return map([&](int k) { return a.v[k] - b.v[k]; }); }
+  friend Quad operator*(Quad a, Quad b) { return map([&](int k) { return a.v[k] * b.v[k]; }); }
+  friend Quad operator/(Quad a, Quad b) { return map([&](int k) { return a.v[k] / b.v[k]; }); }
+  friend Quad operator-(Quad a) { return map([&](int k) { return -a.v[k]; }); }
+  Quad& operator+=(Quad b) { return *this = *this + b; }
+  Quad& operator-=(Quad b) { return *this = *this - b; }
+  Quad& operator*=(Quad b) { return *this = *this * b; }
+  Quad& operator/=(Quad b) { return *this = *this / b; }
+  friend QuadMask operator<(Quad a, Quad b) { return test([&](int k) { return a.v[k] < b.v[k]; }); }
+  friend QuadMask operator<=(Quad a, Quad b) { return test([&](int k) { return a.v[k] <= b.v[k]; }); }
+  friend QuadMask operator>(Quad a, Quad b) { return test([&](int k) { return a.v[k] > b.v[k]; }); }
+  friend QuadMask operator>=(Quad a, Quad b) { return test([&](int k) { return a.v[k] >= b.v[k]; }); }
+  friend QuadMask operator==(Quad a, Quad b) { return test([&](int k) { return a.v[k] == b.v[k]; }); }
+  friend QuadMask operator!=(Quad a, Quad b) { return test([&](int k) { return a.v[k] != b.v[k]; }); }
+
+ private:
+  Quad(float a, float b, float c, float d, int) : v{a, b, c, d} {}
+};
+
+inline Quad select(QuadMask m, Quad a, Quad b) { return Quad::map([&](int k) { return m.m[k] ? a.v[k] : b.v[k]; }); }
+inline Quad min(Quad a, Quad b) { return Quad::map([&](int k) { return min(a.v[k], b.v[k]); }); }
+inline Quad max(Quad a, Quad b) { return Quad::map([&](int k) { return max(a.v[k], b.v[k]); }); }
+inline Quad sqrt(Quad a) { return Quad::map([&](int k) { return sqrt(a.v[k]); }); }
+inline Quad abs(Quad a) { return Quad::map([&](int k) { return abs(a.v[k]); }); }
+inline Quad copysign(Quad a, Quad b) { return Quad::map([&](int k) { return copysign(a.v[k], b.v[k]); }); }
+inline bool any(QuadMask m) { return (m.m[0] || m.m[1]) || (m.m[2] || m.m[3]); }
+inline bool all(QuadMask m) { return (m.m[0] && m.m[1]) && (m.m[2] && m.m[3]); }
+
+template <> struct lane_traits<Quad> {
+  static constexpr std::size_t width = 4;
+  static Quad load(const float* p) { return Quad::map([&](int k) { return p[k]; }); }
+  static void store(float* p, Quad q) { for (int k = 0; k < 4; ++k) p[k] = q.v[k]; }
+  static void store_bits(uint32_t* p, Quad q) { for (int k = 0; k < 4; ++k) p[k] = std::bit_cast<uint32_t>(q.v[k]); }
+  static Quad from_bits(uint32_t bits) { return Quad(std::bit_cast<float>(bits)); }
+};
+inline void store(float* p, Quad v) { lane_traits<Quad>::store(p, v); }
 #endif
 
 // ---------------------------------------------------------------- uniform helpers
@@ -149,7 +223,7 @@ template <class L> inline constexpr std::size_t width_v = lane_traits<L>::width;
 template <class L> inline L load(const float* p) { return lane_traits<L>::load(p); }
 inline void store(float* p, float v) { lane_traits<float>::store(p, v); }
 #if !defined(GYRO_ARCH_SCALAR)
-inline void store(float* p, vfloat v) { lane_traits<vfloat>::store(p, v); }
+template <class A> inline void store(float* p, vfloat_t<A> v) { lane_traits<vfloat_t<A>>::store(p, v); }
 #endif
 template <class L> inline void store_bits(uint32_t* p, L v) { lane_traits<L>::store_bits(p, v); }
 // A lane whose every element holds the given bit pattern: used to carry integers (indices,

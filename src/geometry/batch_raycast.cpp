@@ -15,39 +15,12 @@ namespace gyro {
 namespace {
 
 using detail::fail;
-using detail::require_finite;
 using detail::require_not_null;
 namespace lanes = GYRO_ARCH_NS;
 
 constexpr std::size_t kMaxCount = 0x7FFFFFFF;
 // Rays per chunk: a multiple of 16 so every SIMD level runs full batches inside a chunk.
 constexpr std::size_t kRayChunk = 256;
-
-Status check_rays(const RaysView& r, std::size_t n) {
-  GYRO_TRY(require_not_null(r.ox, "rays.ox"));
-  GYRO_TRY(require_not_null(r.oy, "rays.oy"));
-  GYRO_TRY(require_not_null(r.oz, "rays.oz"));
-  GYRO_TRY(require_not_null(r.dx, "rays.dx"));
-  GYRO_TRY(require_not_null(r.dy, "rays.dy"));
-  GYRO_TRY(require_not_null(r.dz, "rays.dz"));
-  GYRO_TRY(require_finite(r.ox, n, "rays.ox"));
-  GYRO_TRY(require_finite(r.oy, n, "rays.oy"));
-  GYRO_TRY(require_finite(r.oz, n, "rays.oz"));
-  GYRO_TRY(require_finite(r.dx, n, "rays.dx"));
-  GYRO_TRY(require_finite(r.dy, n, "rays.dy"));
-  GYRO_TRY(require_finite(r.dz, n, "rays.dz"));
-  if (r.tmin) {
-    for (std::size_t i = 0; i < n; ++i)
-      if (!(r.tmin[i] >= 0.0f) || !detail::is_finite(r.tmin[i]))
-        return fail(Status::invalid_argument, "rays.tmin[%zu] = %g: must be finite and >= 0", i, double(r.tmin[i]));
-  }
-  if (r.tmax) {
-    for (std::size_t i = 0; i < n; ++i)
-      if (detail::is_nan(r.tmax[i]) || r.tmax[i] < 0.0f)
-        return fail(Status::invalid_argument, "rays.tmax[%zu] = %g: must be >= 0 (+inf allowed)", i, double(r.tmax[i]));
-  }
-  return Status::ok;
-}
 
 // Normal and barycentrics of ray i's hit on primitive k at t (scalar: the same bits at every level).
 void hit_details(const RaysView& rays, std::size_t i, const ShapeArray& p, std::size_t k, float t, float n[3],
@@ -83,7 +56,7 @@ Status run(const RaysView& rays, std::size_t ray_count, const ShapeArray& prims,
   const int normals = (hits.nx != nullptr) + (hits.ny != nullptr) + (hits.nz != nullptr);
   if (normals != 0 && normals != 3) return fail(Status::null_argument, "hits.nx, ny, nz: give all three or none");
   if ((hits.u == nullptr) != (hits.v == nullptr)) return fail(Status::null_argument, "hits.u, v: give both or none");
-  GYRO_TRY(check_rays(rays, ray_count));
+  GYRO_TRY(detail::check_rays(rays, ray_count));
   GYRO_TRY(detail::check_shape_array(prims, prim_count, "prims", true));
 
   detail::FloatEnvGuard env;

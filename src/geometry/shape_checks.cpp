@@ -66,4 +66,30 @@ Status check_shape_array(const ShapeArray& s, std::size_t n, const char* which, 
   return Status::ok;
 }
 
+Status check_rays(const RaysView& r, std::size_t n) {
+  GYRO_TRY(require_not_null(r.ox, "rays.ox"));
+  GYRO_TRY(require_not_null(r.oy, "rays.oy"));
+  GYRO_TRY(require_not_null(r.oz, "rays.oz"));
+  GYRO_TRY(require_not_null(r.dx, "rays.dx"));
+  GYRO_TRY(require_not_null(r.dy, "rays.dy"));
+  GYRO_TRY(require_not_null(r.dz, "rays.dz"));
+  GYRO_TRY(require_finite(r.ox, n, "rays.ox"));
+  GYRO_TRY(require_finite(r.oy, n, "rays.oy"));
+  GYRO_TRY(require_finite(r.oz, n, "rays.oz"));
+  GYRO_TRY(require_finite(r.dx, n, "rays.dx"));
+  GYRO_TRY(require_finite(r.dy, n, "rays.dy"));
+  GYRO_TRY(require_finite(r.dz, n, "rays.dz"));
+  if (r.tmin) {
+    for (std::size_t i = 0; i < n; ++i)
+      if (!(r.tmin[i] >= 0.0f) || !detail::is_finite(r.tmin[i]))
+        return fail(Status::invalid_argument, "rays.tmin[%zu] = %g: must be finite and >= 0", i, double(r.tmin[i]));
+  }
+  if (r.tmax) {
+    for (std::size_t i = 0; i < n; ++i)
+      if (detail::is_nan(r.tmax[i]) || r.tmax[i] < 0.0f)
+        return fail(Status::invalid_argument, "rays.tmax[%zu] = %g: must be >= 0 (+inf allowed)", i, double(r.tmax[i]));
+  }
+  return Status::ok;
+}
+
 }  // namespace gyro::detail

@@ -2,6 +2,7 @@
 #pragma once
 
 #include "gyro/batch_overlap.hpp"
+#include "gyro/batch_raycast.hpp"
 
 #include <cstddef>
 
@@ -11,5 +12,9 @@ namespace gyro::detail {
 /// with strict, also that elements [0, n) are finite with non-negative sizes. Reports the
 /// array as `which`.
 Status check_shape_array(const ShapeArray& s, std::size_t n, const char* which, bool strict);
+
+/// Checks a ray array: origin and direction pointers set and finite; tmin (if given) finite
+/// and >= 0; tmax (if given) >= 0 or +infinity. Reports the first bad array and index.
+Status check_rays(const RaysView& rays, std::size_t n);
 
 }  // namespace gyro::detail

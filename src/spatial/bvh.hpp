@@ -1,0 +1,51 @@
+// The 4-wide BVH over a triangle mesh: the layout the build writes and the kernels read.
+//
+// A node holds its four children's bounds as structure of arrays (bounds[2 * axis + 0] the
+// minima, bounds[2 * axis + 1] the maxima, one float per child), so one 4-wide lane tests a
+// ray against all four at once. An unused child slot has bounds (+inf, -inf), which no ray's
+// slab test can enter. A child is another node, a leaf block (kLeafBit set) or empty.
+//
+// Leaf blocks hold up to four triangles as structure of arrays (corner a, b, c coordinates,
+// one float per triangle) in leaf order, with each triangle's index in the input mesh;
+// unused lanes have NaN corners (no ray hits them) and index kNoTriangle.
+#pragma once
+
+#include "gyro/mesh.hpp"
+#include "gyro/triangle_mesh.hpp"
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace gyro::detail {
+
+inline constexpr uint32_t kLeafBit = 0x80000000u;
+inline constexpr uint32_t kEmptyChild = 0xFFFFFFFFu;
+inline constexpr uint32_t kNoTriangle = 0xFFFFFFFFu;
+/// The build caps the binary depth so that a traversal stack of kBvhStackSize entries always
+/// suffices (each 4-wide level pushes at most three siblings).
+inline constexpr std::size_t kBvhMaxDepth = 64;
+inline constexpr std::size_t kBvhStackSize = 3 * kBvhMaxDepth + 8;
+
+struct alignas(16) BvhNode4 {
+  float bounds[6][4];  ///< [2 * axis + (0: min, 1: max)][child]
+  uint32_t child[4];   ///< node index, kLeafBit | leaf block index, or kEmptyChild
+};
+
+struct alignas(16) BvhLeaf4 {
+  float corner[9][4];  ///< ax, ay, az, bx, by, bz, cx, cy, cz per lane
+  uint32_t triangle[4];
+};
+
+struct Bvh4 {
+  std::vector<BvhNode4> nodes;  ///< nodes[0] is the root
+  std::vector<BvhLeaf4> leaves;
+  AABB bounds;
+  BvhStats stats;
+};
+
+/// Builds the BVH of a valid mesh (binned SAH over triangle centroids, then collapsed from
+/// binary to 4-wide). Deterministic: depends only on the mesh's values.
+Bvh4 build_bvh4(const MeshData& mesh);
+
+}  // namespace gyro::detail

@@ -1,0 +1,260 @@
+// BVH construction: a binary tree by binned SAH (Wald, "On fast construction of SAH-based
+// bounding volume hierarchies", 2007) over the triangles' bounding-box centroids, then
+// collapsed into 4-wide nodes by repeatedly opening the child with the largest surface
+// area (the usual BVH2-to-BVH4 collapse), with triangles packed into 4-wide leaf blocks.
+//
+// Determinism: every decision is a function of float values and indices only (ties go to
+// the lower axis, the lower bin, the earlier child); partitions are stable and the median
+// fallback sorts by (centroid, index). The same mesh always gives the same bytes.
+//
+// The SAH cost counts 4-wide leaf blocks, not triangles (a block of 1 to 4 triangles costs
+// one lane test), so a node of at most 4 triangles is always a leaf.
+#include "spatial/bvh.hpp"
+
+#include <algorithm>
+#include <array>
+
+namespace gyro::detail {
+namespace {
+
+constexpr int kBins = 32;
+constexpr uint32_t kLeafSize = 4;
+constexpr float kInf = __builtin_inff();
+
+struct Box {
+  float lo[3] = {kInf, kInf, kInf};
+  float hi[3] = {-kInf, -kInf, -kInf};
+  void grow(const Box& b) {
+    for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], b.lo[a]), hi[a] = std::max(hi[a], b.hi[a]);
+  }
+  void grow(const float p[3]) {
+    for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], p[a]), hi[a] = std::max(hi[a], p[a]);
+  }
+  // Half the surface area, in double so large scenes keep their precision.
+  double half_area() const {
+    if (!(lo[0] <= hi[0])) return 0.0;
+    const double dx = double(hi[0]) - lo[0], dy = double(hi[1]) - lo[1], dz = double(hi[2]) - lo[2];
+    return dx * dy + dy * dz + dz * dx;
+  }
+};
+
+struct BinaryNode {
+  Box box;
+  uint32_t left = 0, right = 0;  // interior
+  uint32_t first = 0, count = 0;  // leaf when count > 0
+};
+
+double blocks(uint32_t n) { return double((n + kLeafSize - 1) / kLeafSize); }
+
+class Builder {
+ public:
+  explicit Builder(const MeshData& mesh) : mesh_(mesh) {
+    const std::size_t n = mesh.triangle_count();
+    prim_.resize(n);
+    centroid_.resize(n);
+    order_.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      Box b;
+      for (int k = 0; k < 3; ++k) {
+        const uint32_t v = mesh.indices[3 * i + k];
+        const float p[3] = {mesh.x[v], mesh.y[v], mesh.z[v]};
+        b.grow(p);
+      }
+      prim_[i] = b;
+      for (int a = 0; a < 3; ++a) centroid_[i][a] = (b.lo[a] + b.hi[a]) * 0.5f;
+      order_[i] = uint32_t(i);
+    }
+  }
+
+  Bvh4 run() {
+    const uint32_t root = build(0, uint32_t(order_.size()), 0);
+    Bvh4 out;
+    out.nodes.reserve(nodes_.size() / 2 + 1);
+    out.leaves.reserve(order_.size() / 2 + 1);
+    const Box& rb = nodes_[root].box;
+    out.bounds = aabb_from_min_max({rb.lo[0], rb.lo[1], rb.lo[2]}, {rb.hi[0], rb.hi[1], rb.hi[2]});
+    root_area_ = std::max(rb.half_area(), 1e-300);
+    // The root is always a 4-wide node, even over a single leaf, so traversal has one shape.
+    std::size_t depth = 0;
+    if (nodes_[root].count > 0) {
+      out.nodes.push_back(empty_node());
+      set_child(out.nodes[0], 0, nodes_[root].box, emit_leaf(out, nodes_[root]));
+      sah_ += 1.0;
+      depth = 1;
+    } else {
+      emit(out, root, 1, depth);
+    }
+    out.stats.nodes = out.nodes.size();
+    out.stats.leaves = out.leaves.size();
+    out.stats.max_depth = depth;
+    out.stats.bytes = out.nodes.size() * sizeof(BvhNode4) + out.leaves.size() * sizeof(BvhLeaf4);
+    out.stats.sah_cost = sah_;
+    return out;
+  }
+
+ private:
+  const MeshData& mesh_;
+  std::vector<Box> prim_;
+  std::vector<std::array<float, 3>> centroid_;
+  std::vector<uint32_t> order_;
+  std::vector<BinaryNode> nodes_;
+  double root_area_ = 1.0;
+  double sah_ = 0.0;
+
+  uint32_t build(uint32_t first, uint32_t count, std::size_t depth) {
+    Box box, cbox;
+    for (uint32_t i = first; i < first + count; ++i) {
+      box.grow(prim_[order_[i]]);
+      cbox.grow(centroid_[order_[i]].data());
+    }
+    const uint32_t index = uint32_t(nodes_.size());
+    nodes_.push_back({box, 0, 0, 0, 0});
+    if (count <= kLeafSize) {
+      nodes_[index].first = first, nodes_[index].count = count;
+      return index;
+    }
+    uint32_t left_count = 0;
+    // Past this depth only median splits, which end within log2(count) <= 31 more levels.
+    if (depth + 33 < kBvhMaxDepth) left_count = sah_split(first, count, cbox);
+    if (left_count == 0 || left_count == count) left_count = median_split(first, count, cbox);
+    const uint32_t l = build(first, left_count, depth + 1);
+    const uint32_t r = build(first + left_count, count - left_count, depth + 1);
+    nodes_[index].left = l, nodes_[index].right = r;
+    return index;
+  }
+
+  int bin_of(float c, float lo, float scale) const {
+    const float f = (c - lo) * scale;
+    const int b = f >= 0.0f ? int(f) : 0;
+    return b < kBins ? b : kBins - 1;
+  }
+
+  // Binned SAH: the best plane between bins on any axis; returns the left count (0 if none).
+  uint32_t sah_split(uint32_t first, uint32_t count, const Box& cbox) {
+    double best_cost = kInf;
+    int best_axis = -1, best_bin = 0;
+    for (int axis = 0; axis < 3; ++axis) {
+      const float lo = cbox.lo[axis], ext = cbox.hi[axis] - cbox.lo[axis];
+      if (!(ext > 0.0f)) continue;
+      const float scale = float(kBins) / ext;
+      Box bin_box[kBins];
+      uint32_t bin_count[kBins] = {};
+      for (uint32_t i = first; i < first + count; ++i) {
+        const uint32_t p = order_[i];
+        const int b = bin_of(centroid_[p][axis], lo, scale);
+        bin_box[b].grow(prim_[p]);
+        ++bin_count[b];
+      }
+      // Right-to-left sweep: the cost of everything right of each plane.
+      double right_cost[kBins];
+      Box acc;
+      uint32_t n = 0;
+      for (int b = kBins - 1; b > 0; --b) {
+        acc.grow(bin_box[b]);
+        n += bin_count[b];
+        right_cost[b] = acc.half_area() * blocks(n);
+      }
+      acc = Box();
+      n = 0;
+      for (int b = 0; b < kBins - 1; ++b) {
+        acc.grow(bin_box[b]);
+        n += bin_count[b];
+        if (n == 0 || n == count) continue;
+        const double cost = acc.half_area() * blocks(n) + right_cost[b + 1];
+        if (cost < best_cost) best_cost = cost, best_axis = axis, best_bin = b;
+      }
+    }
+    if (best_axis < 0) return 0;
+    const float lo = cbox.lo[best_axis], scale = float(kBins) / (cbox.hi[best_axis] - cbox.lo[best_axis]);
+    auto* mid = std::stable_partition(order_.data() + first, order_.data() + first + count, [&](uint32_t p) {
+      return bin_of(centroid_[p][best_axis], lo, scale) <= best_bin;
+    });
+    return uint32_t(mid - (order_.data() + first));
+  }
+
+  // Half by count along the widest centroid axis, ordered by (centroid, index).
+  uint32_t median_split(uint32_t first, uint32_t count, const Box& cbox) {
+    int axis = 0;
+    float ext = -1.0f;
+    for (int a = 0; a < 3; ++a) {
+      const float e = cbox.hi[a] - cbox.lo[a];
+      if (e > ext) ext = e, axis = a;
+    }
+    std::sort(order_.begin() + first, order_.begin() + first + count, [&](uint32_t p, uint32_t q) {
+      const float cp = centroid_[p][axis], cq = centroid_[q][axis];
+      return cp < cq || (cp == cq && p < q);
+    });
+    return count / 2;
+  }
+
+  static BvhNode4 empty_node() {
+    BvhNode4 n;
+    for (int k = 0; k < 4; ++k) {
+      for (int a = 0; a < 3; ++a) n.bounds[2 * a][k] = kInf, n.bounds[2 * a + 1][k] = -kInf;
+      n.child[k] = kEmptyChild;
+    }
+    return n;
+  }
+
+  static void set_child(BvhNode4& n, int k, const Box& b, uint32_t code) {
+    for (int a = 0; a < 3; ++a) n.bounds[2 * a][k] = b.lo[a], n.bounds[2 * a + 1][k] = b.hi[a];
+    n.child[k] = code;
+  }
+
+  uint32_t emit_leaf(Bvh4& out, const BinaryNode& b) {
+    BvhLeaf4 leaf;
+    const float nan = __builtin_nanf("");
+    for (int k = 0; k < 4; ++k) {
+      if (uint32_t(k) < b.count) {
+        const uint32_t t = order_[b.first + k];
+        for (int c = 0; c < 3; ++c) {
+          const uint32_t v = mesh_.indices[3 * std::size_t(t) + c];
+          leaf.corner[3 * c][k] = mesh_.x[v], leaf.corner[3 * c + 1][k] = mesh_.y[v], leaf.corner[3 * c + 2][k] = mesh_.z[v];
+        }
+        leaf.triangle[k] = t;
+      } else {
+        for (auto& row : leaf.corner) row[k] = nan;
+        leaf.triangle[k] = kNoTriangle;
+      }
+    }
+    sah_ += b.box.half_area() / root_area_;
+    out.leaves.push_back(leaf);
+    return kLeafBit | uint32_t(out.leaves.size() - 1);
+  }
+
+  // Emits the 4-wide node for binary interior node b; returns its index.
+  uint32_t emit(Bvh4& out, uint32_t b, std::size_t depth, std::size_t& max_depth) {
+    max_depth = std::max(max_depth, depth);
+    uint32_t kids[4] = {nodes_[b].left, nodes_[b].right};
+    int n = 2;
+    while (n < 4) {
+      int open = -1;
+      double area = -1.0;
+      for (int k = 0; k < n; ++k) {
+        const BinaryNode& c = nodes_[kids[k]];
+        if (c.count == 0 && c.box.half_area() > area) area = c.box.half_area(), open = k;
+      }
+      if (open < 0) break;
+      const BinaryNode& c = nodes_[kids[open]];
+      for (int k = n; k > open + 1; --k) kids[k] = kids[k - 1];
+      kids[open + 1] = c.right;
+      kids[open] = c.left;
+      ++n;
+    }
+    const uint32_t index = uint32_t(out.nodes.size());
+    out.nodes.push_back(empty_node());
+    sah_ += nodes_[b].box.half_area() / root_area_;
+    for (int k = 0; k < n; ++k) {
+      const BinaryNode& c = nodes_[kids[k]];
+      const uint32_t code = c.count > 0 ? emit_leaf(out, c) : emit(out, kids[k], depth + 1, max_depth);
+      set_child(out.nodes[index], k, c.box, code);
+    }
+    return index;
+  }
+};
+
+}  // namespace
+
+Bvh4 build_bvh4(const MeshData& mesh) { return Builder(mesh).run(); }
+
+}  // namespace gyro::detail

@@ -1,0 +1,127 @@
+// bvh_raycast at this translation unit's SIMD level: each ray walks the 4-wide BVH alone,
+// testing a node's four child boxes, or a leaf's four triangles, in one 4-wide lane (Quad).
+//
+// Exactness: the answer is the brute-force one, the smallest (t, triangle index) over every
+// triangle the watertight test of ray_triangle_lanes.hpp hits in [tmin, tmax]. The order in
+// which nodes are visited only changes speed, because
+//  - ties are broken by the triangle index, not by the visiting order;
+//  - a subtree is skipped only when its box is entered beyond the best t found so far by a
+//    relative margin (kBestSlack, 2^-16), far more than the few ulps by which a triangle's
+//    rounded t can precede its exact entry into the box;
+//  - the slab test accepts a box whose computed exit precedes its entry by up to 2^-20 of
+//    the exit distance (Ize, "Robust BVH ray traversal", JCGT 2013, asks for 2 gamma_3):
+//    rays grazing a face still enter;
+//  - a slab product that is NaN (an origin exactly on a slab plane of an axis the ray is
+//    parallel to: 0 * inf) is ignored by the ordered max/min (`a > b ? a : b` keeps b).
+// Every lane operation is elementwise and the visiting order is a function of float values
+// only, so each level (the scalar one runs Quad as four floats) gives the same bits.
+#include "geometry/ray_triangle_lanes.hpp"
+#include "spatial/bvh_batch.hpp"
+
+#include <bit>
+
+namespace gyro::GYRO_ARCH_NS {
+namespace {
+
+using detail::Bvh4;
+using detail::BvhLeaf4;
+using detail::BvhNode4;
+using detail::kLeafBit;
+using detail::kNoTriangle;
+
+constexpr float kInf = __builtin_inff();
+constexpr float kSlabSlack = 0x1p-20f;
+constexpr float kBestSlack = 0x1p-16f;
+
+struct Entry {
+  uint32_t code;
+  float near;
+};
+
+// Only t of ray_triangle_t (the same expressions, so the same bits): the traversal needs no
+// barycentrics, and the caller recomputes them for the one triangle that wins.
+inline Quad leaf_t(const WatertightRay<Quad>& r, const TriangleL<Quad>& tri, Quad tmin, Quad tmax) {
+  const auto k = detail_rt::ray_triangle_terms(r, tri);
+  const Quad t = k.T / k.det;
+  return select(k.inside && (t >= tmin) && (t <= tmax), t + Quad(0.0f), Quad(kInf));
+}
+
+template <bool AnyHit>
+inline void trace(const Bvh4& bvh, const float o[3], const float d[3], float tmin, float tmax, float& out_t,
+                  uint32_t& out_id) {
+  const float inv[3] = {1.0f / d[0], 1.0f / d[1], 1.0f / d[2]};
+  int near_row[3], far_row[3];
+  for (int a = 0; a < 3; ++a) {
+    const int neg = int(std::bit_cast<uint32_t>(inv[a]) >> 31);
+    near_row[a] = 2 * a + neg, far_row[a] = 2 * a + 1 - neg;
+  }
+  const Quad qo[3] = {Quad(o[0]), Quad(o[1]), Quad(o[2])};
+  const Quad qi[3] = {Quad(inv[0]), Quad(inv[1]), Quad(inv[2])};
+  const Quad qtmin(tmin), qtmax(tmax);
+  const WatertightRay<Quad> wr =
+      watertight_ray(RayL<Quad>{V3<Quad>(qo[0], qo[1], qo[2]), V3<Quad>(Quad(d[0]), Quad(d[1]), Quad(d[2]))});
+
+  float best_t = kInf, limit = tmax;
+  uint32_t best_id = kNoTriangle;
+  Entry stack[detail::kBvhStackSize];
+  int sp = 0;
+  stack[sp++] = {0, tmin};
+  while (sp > 0) {
+    const Entry e = stack[--sp];
+    if (e.near > limit) continue;
+    if (e.code & kLeafBit) {
+      const BvhLeaf4& leaf = bvh.leaves[e.code & ~kLeafBit];
+      const auto row = [&](int k) { return load<Quad>(leaf.corner[k]); };
+      const TriangleL<Quad> tri{{row(0), row(1), row(2)}, {row(3), row(4), row(5)}, {row(6), row(7), row(8)}};
+      float ts[4];
+      store(ts, leaf_t(wr, tri, qtmin, qtmax));
+      for (int k = 0; k < 4; ++k) {
+        if (ts[k] == kInf) continue;
+        if (ts[k] < best_t || (ts[k] == best_t && leaf.triangle[k] < best_id)) best_t = ts[k], best_id = leaf.triangle[k];
+      }
+      if (best_id != kNoTriangle) {
+        if constexpr (AnyHit) break;
+        limit = best_t + best_t * kBestSlack;
+      }
+      continue;
+    }
+    const BvhNode4& node = bvh.nodes[e.code];
+    const auto slab = [&](int row, int axis) { return (load<Quad>(node.bounds[row]) - qo[axis]) * qi[axis]; };
+    const Quad qlimit(limit);
+    const Quad tn = max(slab(near_row[0], 0), max(slab(near_row[1], 1), max(slab(near_row[2], 2), qtmin)));
+    const Quad tf = min(slab(far_row[0], 0), min(slab(far_row[1], 1), min(slab(far_row[2], 2), qlimit)));
+    float nears[4];
+    store(nears, select(tn <= tf + abs(tf) * Quad(kSlabSlack), tn, Quad(kInf)));
+    // Push the entered children farthest first, so the nearest is visited next (ties keep
+    // the slot order: the order is a function of the values only).
+    Entry hit[4];
+    int n = 0;
+    for (int k = 0; k < 4; ++k) {
+      if (nears[k] == kInf) continue;
+      int j = n++;
+      while (j > 0 && hit[j - 1].near > nears[k]) hit[j] = hit[j - 1], --j;
+      hit[j] = {node.child[k], nears[k]};
+    }
+    while (n > 0) stack[sp++] = hit[--n];
+  }
+  out_t = best_t;
+  out_id = best_id;
+}
+
+template <bool AnyHit> void run(const BvhRaycastArgs& a, std::size_t begin, std::size_t end) {
+  for (std::size_t i = begin; i < end; ++i) {
+    const float o[3] = {a.ox[i], a.oy[i], a.oz[i]};
+    const float d[3] = {a.dx[i], a.dy[i], a.dz[i]};
+    const float tmin = a.tmin ? a.tmin[i] : 0.0f;
+    const float tmax = a.tmax ? a.tmax[i] : kInf;
+    trace<AnyHit>(*a.bvh, o, d, tmin, tmax, a.t_out[i], a.index_out[i]);
+  }
+}
+
+}  // namespace
+
+GYRO_FLATTEN void bvh_raycast(const BvhRaycastArgs& a, std::size_t begin, std::size_t end) {
+  a.any_hit ? run<true>(a, begin, end) : run<false>(a, begin, end);
+}
+
+}  // namespace gyro::GYRO_ARCH_NS

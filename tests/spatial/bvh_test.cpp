@@ -1,0 +1,103 @@
+// The BVH's structural invariants: every triangle in exactly one leaf lane, every child box
+// containing everything below it, padding lanes and empty slots that no ray can enter, and
+// the depth bound the traversal stack relies on.
+#include "spatial/bvh.hpp"
+#include "workloads.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+
+namespace gyro {
+namespace {
+
+using testing::SplitMix64;
+
+MeshData random_mesh(std::size_t n, uint64_t seed, bool clustered) {
+  SplitMix64 rng(seed);
+  MeshData m;
+  for (std::size_t t = 0; t < n; ++t) {
+    // Clustered: many triangles with the same centroid, which binning cannot split.
+    const vec3 c = clustered && t % 3 ? vec3{1.0f, 2.0f, 3.0f} : vec3{float(50 * rng.u()), float(rng.u()), float(50 * rng.u())};
+    for (int k = 0; k < 3; ++k) m.add_vertex(c + vec3{float(rng.u() - 0.5), float(rng.u() - 0.5), float(rng.u() - 0.5)});
+    m.add_triangle(uint32_t(3 * t), uint32_t(3 * t + 1), uint32_t(3 * t + 2));
+  }
+  return m;
+}
+
+struct Box {
+  float lo[3], hi[3];
+};
+
+// Walks the tree; checks containment and counts triangle occurrences. Returns the depth.
+std::size_t check(const detail::Bvh4& bvh, const MeshData& m, uint32_t code, const Box& parent, std::vector<int>& seen) {
+  if (code & detail::kLeafBit) {
+    const detail::BvhLeaf4& leaf = bvh.leaves[code & ~detail::kLeafBit];
+    for (int k = 0; k < 4; ++k) {
+      if (leaf.triangle[k] == detail::kNoTriangle) {
+        EXPECT_TRUE(std::isnan(leaf.corner[0][k])) << "padding lane must be NaN";
+        continue;
+      }
+      ++seen[leaf.triangle[k]];
+      const Triangle t = m.triangle(leaf.triangle[k]);
+      const vec3 p[3] = {t.a, t.b, t.c};
+      for (int c = 0; c < 3; ++c) {
+        const float xyz[3] = {p[c].x, p[c].y, p[c].z};
+        EXPECT_EQ(leaf.corner[3 * c][k], xyz[0]);
+        for (int a = 0; a < 3; ++a) EXPECT_TRUE(parent.lo[a] <= xyz[a] && xyz[a] <= parent.hi[a]);
+      }
+    }
+    return 0;
+  }
+  const detail::BvhNode4& node = bvh.nodes[code];
+  std::size_t depth = 0;
+  int used = 0;
+  for (int k = 0; k < 4; ++k) {
+    if (node.child[k] == detail::kEmptyChild) {
+      for (int a = 0; a < 3; ++a) EXPECT_TRUE(node.bounds[2 * a][k] == INFINITY && node.bounds[2 * a + 1][k] == -INFINITY);
+      continue;
+    }
+    ++used;
+    Box b;
+    for (int a = 0; a < 3; ++a) {
+      b.lo[a] = node.bounds[2 * a][k], b.hi[a] = node.bounds[2 * a + 1][k];
+      EXPECT_TRUE(parent.lo[a] <= b.lo[a] && b.hi[a] <= parent.hi[a]);
+    }
+    depth = std::max(depth, check(bvh, m, node.child[k], b, seen));
+  }
+  EXPECT_GE(used, 1);
+  return depth + 1;
+}
+
+void check_mesh(const MeshData& m) {
+  const detail::Bvh4 bvh = detail::build_bvh4(m);
+  std::vector<int> seen(m.triangle_count(), 0);
+  const Box all{{-INFINITY, -INFINITY, -INFINITY}, {INFINITY, INFINITY, INFINITY}};
+  const std::size_t depth = check(bvh, m, 0, all, seen);
+  for (std::size_t t = 0; t < seen.size(); ++t) ASSERT_EQ(seen[t], 1) << "triangle " << t;
+  EXPECT_EQ(depth, bvh.stats.max_depth);
+  EXPECT_LE(depth, detail::kBvhMaxDepth);
+  // Most leaves should be full: the SAH counts blocks of four.
+  EXPECT_LE(bvh.leaves.size(), m.triangle_count() / 2 + 1);
+  // Deterministic to the byte.
+  const detail::Bvh4 again = detail::build_bvh4(m);
+  ASSERT_EQ(again.nodes.size(), bvh.nodes.size());
+  EXPECT_EQ(std::memcmp(again.nodes.data(), bvh.nodes.data(), bvh.nodes.size() * sizeof(detail::BvhNode4)), 0);
+  ASSERT_EQ(again.leaves.size(), bvh.leaves.size());
+  // Leaves hold NaN padding (never equal to itself), so compare their bytes.
+  EXPECT_EQ(std::memcmp(again.leaves.data(), bvh.leaves.data(), bvh.leaves.size() * sizeof(detail::BvhLeaf4)), 0);
+}
+
+TEST(Bvh, EveryTriangleOnceAndBoxesNested) {
+  for (std::size_t n : {1u, 3u, 4u, 5u, 16u, 17u, 1000u, 20000u}) check_mesh(random_mesh(n, 100 + n, false));
+}
+
+TEST(Bvh, CoincidentCentroidsStillSplitAndStayShallow) {
+  const MeshData m = random_mesh(30000, 7, true);
+  check_mesh(m);
+  EXPECT_LE(detail::build_bvh4(m).stats.max_depth, 40u);
+}
+
+}  // namespace
+}  // namespace gyro
