@@ -32,25 +32,6 @@ constexpr std::size_t kMaxCount = 0x7FFFFFFF;
 // Rays per chunk: BVH rays cost microseconds each, so small chunks balance threads well.
 constexpr std::size_t kRayChunk = 64;
 
-Status check_mesh(const MeshData& m) {
-  if (m.x.size() != m.y.size() || m.x.size() != m.z.size())
-    return fail(Status::invalid_count, "mesh: x, y, z have different sizes (%zu, %zu, %zu)", m.x.size(), m.y.size(),
-                m.z.size());
-  if (m.indices.size() % 3 != 0)
-    return fail(Status::invalid_count, "mesh: %zu indices is not a multiple of 3", m.indices.size());
-  if (m.triangle_count() == 0) return fail(Status::invalid_count, "mesh: no triangles");
-  if (m.vertex_count() > kMaxCount || m.triangle_count() > kMaxCount)
-    return fail(Status::invalid_count, "mesh: counts must be below 2^31");
-  GYRO_TRY(detail::require_finite(m.x.data(), m.x.size(), "mesh.x"));
-  GYRO_TRY(detail::require_finite(m.y.data(), m.y.size(), "mesh.y"));
-  GYRO_TRY(detail::require_finite(m.z.data(), m.z.size(), "mesh.z"));
-  for (std::size_t i = 0; i < m.indices.size(); ++i)
-    if (m.indices[i] >= m.vertex_count())
-      return fail(Status::invalid_argument, "mesh: triangle %zu uses vertex %u, but there are %zu vertices", i / 3,
-                  m.indices[i], m.vertex_count());
-  return Status::ok;
-}
-
 // Normal facing the ray and the barycentric weights of b and c, for the winning triangle
 // (the scalar instantiation of the batch's templates: the same bits at every level).
 void hit_details(const Triangle& tri, const vec3& o, const vec3& d, vec3& normal, float& u, float& v) {
@@ -155,7 +136,7 @@ TriangleMesh::TriangleMesh(TriangleMesh&&) noexcept = default;
 TriangleMesh& TriangleMesh::operator=(TriangleMesh&&) noexcept = default;
 
 Status TriangleMesh::create(const MeshData& mesh, TriangleMesh& out) {
-  GYRO_TRY(check_mesh(mesh));
+  GYRO_TRY(validate_mesh(mesh));
   auto impl = std::make_unique<Impl>();
   impl->mesh = mesh;
   impl->bvh = detail::build_bvh4(impl->mesh);

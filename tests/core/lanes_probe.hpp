@@ -18,5 +18,7 @@ struct LaneProbeArgs {
 
 using lanes_probe_fn = void(const LaneProbeArgs&, std::size_t begin, std::size_t end);
 GYRO_KERNEL(lanes_probe, lanes_probe_fn)
+/// The same operations on Quad, the fixed 4-wide lane (four floats at the scalar level).
+GYRO_KERNEL(quad_probe, lanes_probe_fn)
 
 }  // namespace gyro

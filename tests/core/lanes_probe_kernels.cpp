@@ -3,9 +3,8 @@
 
 namespace gyro::GYRO_ARCH_NS {
 
-void lanes_probe(const LaneProbeArgs& p, std::size_t begin, std::size_t end) {
-  for_lanes(begin, end, [&](auto tag, std::size_t i) {
-    using L = decltype(tag);
+namespace {
+template <class L> void probe_at(const LaneProbeArgs& p, std::size_t i) {
     const L a = load<L>(p.a + i), b = load<L>(p.b + i);
     const L one(1.0f), zero(0.0f);
     const L results[kLaneProbeOps] = {
@@ -15,7 +14,17 @@ void lanes_probe(const LaneProbeArgs& p, std::size_t begin, std::size_t end) {
         select((a < b) || !(b > zero), one, zero), select(a < b, a, b), a + L(0.0f), a * L(0.0f),
         from_bits<L>(0x7f7fffffu) + a};
     for (int k = 0; k < kLaneProbeOps; ++k) store(p.out[k] + i, results[k]);
-  });
+}
+}  // namespace
+
+void lanes_probe(const LaneProbeArgs& p, std::size_t begin, std::size_t end) {
+  for_lanes(begin, end, [&](auto tag, std::size_t i) { probe_at<decltype(tag)>(p, i); });
+}
+
+void quad_probe(const LaneProbeArgs& p, std::size_t begin, std::size_t end) {
+  std::size_t i = begin;
+  for (; i + 4 <= end; i += 4) probe_at<Quad>(p, i);
+  for (; i < end; ++i) probe_at<float>(p, i);
 }
 
 }  // namespace gyro::GYRO_ARCH_NS

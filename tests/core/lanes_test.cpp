@@ -22,24 +22,28 @@ TEST(Lanes, EveryOperationMatchesScalarOnSpecialValues) {
   for (float x : specials)
     for (float y : specials) a.push_back(x), b.push_back(y);
   const std::size_t n = a.size();
-  auto run = [&](SimdLevel level) {
+  auto run = [&](SimdLevel level, bool quad) {
     std::vector<std::vector<float>> out(kLaneProbeOps, std::vector<float>(n));
     LaneProbeArgs args{a.data(), b.data(), {}};
     for (int k = 0; k < kLaneProbeOps; ++k) args.out[k] = out[k].data();
-    detail::lanes_probe_for(level)(args, 0, n);
+    (quad ? detail::quad_probe_for(level) : detail::lanes_probe_for(level))(args, 0, n);
     return out;
   };
-  const auto ref = run(SimdLevel::scalar);
+  const auto ref = run(SimdLevel::scalar, false);
   int levels = 0;
-  for (uint32_t v = 2; v <= 5; ++v) {
+  // Every level's wide lane, and every level's Quad (the scalar level's included).
+  for (uint32_t v = 1; v <= 5; ++v) {
     const SimdLevel level = SimdLevel(v);
     if (!simd_level_available(level)) continue;
-    ++levels;
-    const auto got = run(level);
-    for (int k = 0; k < kLaneProbeOps; ++k)
-      for (std::size_t i = 0; i < n; ++i)
-        ASSERT_EQ(detail::canonical_float_bits(got[k][i]), detail::canonical_float_bits(ref[k][i]))
-            << "op " << k << " at " << simd_level_name(level) << " a=" << a[i] << " b=" << b[i];
+    levels += v > 1;
+    for (bool quad : {false, true}) {
+      const auto got = run(level, quad);
+      for (int k = 0; k < kLaneProbeOps; ++k)
+        for (std::size_t i = 0; i < n; ++i)
+          ASSERT_EQ(detail::canonical_float_bits(got[k][i]), detail::canonical_float_bits(ref[k][i]))
+              << "op " << k << " at " << simd_level_name(level) << (quad ? " (Quad)" : "") << " a=" << a[i]
+              << " b=" << b[i];
+    }
   }
   EXPECT_GE(levels, 1) << "no SIMD level available to compare";
 }
