@@ -41,6 +41,9 @@ struct MeshHit {
   float u = 0.0f, v = 0.0f;  ///< barycentric weights of corners b and c (a's is 1 - u - v)
 };
 
+/// hits.primitive value of a ray the mesh and scene queries cannot answer.
+inline constexpr int32_t kRayInvalid = -2;
+
 class TriangleMesh {
  public:
   TriangleMesh();
@@ -79,12 +82,16 @@ bool overlaps(const TriangleMesh& mesh, const AABB& box);
 bool overlaps(const TriangleMesh& mesh, const OBB& box);
 bool overlaps(const TriangleMesh& mesh, const Triangle& triangle);
 
-/// Batch closest hit: hits.primitive[i] is the triangle index (input order) or -1. The rays
-/// are checked like gyro::raycast_closest's (a bad ray fails the call, nothing written).
-/// Parallel over fixed chunks of rays; bit-identical at every SIMD level and thread count.
+/// Batch closest hit: hits.primitive[i] is the triangle index (input order), -1 for a miss,
+/// or kRayInvalid for a ray the query cannot answer (a NaN or infinite coordinate, a zero
+/// direction, tmin NaN, infinite or negative, tmax NaN or below tmin): such a ray gets
+/// t = +infinity and zero normal and barycentrics, and the other rays are answered. Null
+/// arrays, counts of 2^31 or more and a mesh that was never created fail the call (nothing
+/// written). Parallel over fixed chunks of rays; bit-identical at every SIMD level and
+/// thread count.
 Status raycast_closest(const TriangleMesh& mesh, const RaysView& rays, std::size_t ray_count, const HitsOut& hits);
 /// Batch any hit: primitive[i] is some triangle hit in range (the first one the traversal
-/// finds, the same at every level and thread count) or -1; t is that hit's t.
+/// finds, the same at every level and thread count), -1 or kRayInvalid; t is that hit's t.
 Status raycast_any(const TriangleMesh& mesh, const RaysView& rays, std::size_t ray_count, const HitsOut& hits);
 
 }  // namespace gyro

@@ -13,8 +13,9 @@ namespace gyro::detail {
 /// array as `which`.
 Status check_shape_array(const ShapeArray& s, std::size_t n, const char* which, bool strict);
 
-/// Checks a ray array: origin and direction pointers set and finite; tmin (if given) finite
-/// and >= 0; tmax (if given) >= 0 or +infinity. Reports the first bad array and index.
-Status check_rays(const RaysView& rays, std::size_t n);
+/// Checks a ray array: origin and direction pointers set; with values, also finite
+/// coordinates, tmin (if given) finite and >= 0, tmax (if given) >= 0 or +infinity.
+/// Reports the first bad array and index.
+Status check_rays(const RaysView& rays, std::size_t n, bool values = true);
 
 }  // namespace gyro::detail

@@ -22,19 +22,25 @@ namespace gyro::detail {
 inline constexpr uint32_t kLeafBit = 0x80000000u;
 inline constexpr uint32_t kEmptyChild = 0xFFFFFFFFu;
 inline constexpr uint32_t kNoTriangle = 0xFFFFFFFFu;
+/// Written as the hit index of a ray the query cannot answer (-2 as int32_t).
+inline constexpr uint32_t kInvalidRay = 0xFFFFFFFEu;
 /// The build caps the binary depth so that a traversal stack of kBvhStackSize entries always
 /// suffices (each 4-wide level pushes at most three siblings).
 inline constexpr std::size_t kBvhMaxDepth = 64;
 inline constexpr std::size_t kBvhStackSize = 3 * kBvhMaxDepth + 8;
 
-struct alignas(16) BvhNode4 {
+// Cache-line aligned: a node is exactly two lines, a leaf three, so a visit never touches
+// a line it does not need.
+struct alignas(64) BvhNode4 {
   float bounds[6][4];  ///< [2 * axis + (0: min, 1: max)][child]
   uint32_t child[4];   ///< node index, kLeafBit | leaf block index, or kEmptyChild
+  uint32_t unused[4] = {};  ///< to the cache line, zeroed so the bytes are defined
 };
 
-struct alignas(16) BvhLeaf4 {
+struct alignas(64) BvhLeaf4 {
   float corner[9][4];  ///< ax, ay, az, bx, by, bz, cx, cy, cz per lane
   uint32_t triangle[4];
+  uint32_t unused[8] = {};  ///< to the cache line, zeroed so the bytes are defined
 };
 
 struct Bvh4 {

@@ -66,8 +66,10 @@ inline void trace(const Bvh4& bvh, const float o[3], const float d[3], float tmi
   Entry stack[detail::kBvhStackSize];
   int sp = 0;
   stack[sp++] = {0, tmin};
+  Entry e;
   while (sp > 0) {
-    const Entry e = stack[--sp];
+    e = stack[--sp];
+  visit:
     if (e.near > limit) continue;
     if (e.code & kLeafBit) {
       const BvhLeaf4& leaf = bvh.leaves[e.code & ~kLeafBit];
@@ -93,19 +95,42 @@ inline void trace(const Bvh4& bvh, const float o[3], const float d[3], float tmi
     float nears[4];
     store(nears, select(tn <= tf + abs(tf) * Quad(kSlabSlack), tn, Quad(kInf)));
     // Push the entered children farthest first, so the nearest is visited next (ties keep
-    // the slot order: the order is a function of the values only).
+    // the slot order: the order is a function of the values only). Each is prefetched as
+    // it is pushed: traversal is bound by memory latency, not arithmetic.
     Entry hit[4];
     int n = 0;
     for (int k = 0; k < 4; ++k) {
       if (nears[k] == kInf) continue;
+      const uint32_t c = node.child[k];
+      if (c & kLeafBit) {
+        const char* p = reinterpret_cast<const char*>(&bvh.leaves[c & ~kLeafBit]);
+        __builtin_prefetch(p), __builtin_prefetch(p + 64), __builtin_prefetch(p + 128);
+      } else {
+        const char* p = reinterpret_cast<const char*>(&bvh.nodes[c]);
+        __builtin_prefetch(p), __builtin_prefetch(p + 64);
+      }
       int j = n++;
       while (j > 0 && hit[j - 1].near > nears[k]) hit[j] = hit[j - 1], --j;
-      hit[j] = {node.child[k], nears[k]};
+      hit[j] = {c, nears[k]};
+    }
+    if (n == 1) {  // the common case: descend without touching the stack
+      e = hit[0];
+      goto visit;
     }
     while (n > 0) stack[sp++] = hit[--n];
   }
   out_t = best_t;
   out_id = best_id;
+}
+
+inline bool finite(float v) { return (std::bit_cast<uint32_t>(v) & 0x7f800000u) != 0x7f800000u; }
+
+// A ray the query cannot answer: a NaN or infinite coordinate, a zero direction, tmin not
+// finite or negative, tmax NaN or negative (+infinity is fine), or tmin > tmax.
+inline bool valid_ray(const float o[3], const float d[3], float tmin, float tmax) {
+  const bool coords = finite(o[0]) && finite(o[1]) && finite(o[2]) && finite(d[0]) && finite(d[1]) && finite(d[2]);
+  const bool dir = d[0] != 0.0f || d[1] != 0.0f || d[2] != 0.0f;
+  return coords && dir && finite(tmin) && tmin >= 0.0f && tmax >= tmin;
 }
 
 template <bool AnyHit> void run(const BvhRaycastArgs& a, std::size_t begin, std::size_t end) {
@@ -114,6 +139,11 @@ template <bool AnyHit> void run(const BvhRaycastArgs& a, std::size_t begin, std:
     const float d[3] = {a.dx[i], a.dy[i], a.dz[i]};
     const float tmin = a.tmin ? a.tmin[i] : 0.0f;
     const float tmax = a.tmax ? a.tmax[i] : kInf;
+    if (!valid_ray(o, d, tmin, tmax)) {
+      a.t_out[i] = kInf;
+      a.index_out[i] = detail::kInvalidRay;
+      continue;
+    }
     trace<AnyHit>(*a.bvh, o, d, tmin, tmax, a.t_out[i], a.index_out[i]);
   }
 }

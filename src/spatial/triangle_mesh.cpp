@@ -103,7 +103,7 @@ Status run_batch(const TriangleMesh& mesh, const RaysView& rays, std::size_t ray
   const int normals = (hits.nx != nullptr) + (hits.ny != nullptr) + (hits.nz != nullptr);
   if (normals != 0 && normals != 3) return fail(Status::null_argument, "hits.nx, ny, nz: give all three or none");
   if ((hits.u == nullptr) != (hits.v == nullptr)) return fail(Status::null_argument, "hits.u, v: give both or none");
-  GYRO_TRY(detail::check_rays(rays, ray_count));
+  GYRO_TRY(detail::check_rays(rays, ray_count, false));  // bad values are flagged per ray
 
   detail::FloatEnvGuard env;
   const auto& m = *mesh.impl();
@@ -156,7 +156,7 @@ MeshHit raycast(const TriangleMesh& mesh, const Ray& ray, float tmin, float tmax
   float t = kInf;
   uint32_t id = detail::kNoTriangle;
   trace(*mesh.impl(), ray, tmin, tmax, false, t, id);
-  if (id == detail::kNoTriangle) return out;
+  if (id == detail::kNoTriangle || id == detail::kInvalidRay) return out;
   out.hit.hit = true;
   out.hit.t = t;
   out.hit.point = ray.origin + ray.direction * t;
@@ -170,7 +170,7 @@ bool raycast_any(const TriangleMesh& mesh, const Ray& ray, float tmin, float tma
   float t = kInf;
   uint32_t id = detail::kNoTriangle;
   trace(*mesh.impl(), ray, tmin, tmax, true, t, id);
-  return id != detail::kNoTriangle;
+  return id != detail::kNoTriangle && id != detail::kInvalidRay;
 }
 
 bool linetest(const TriangleMesh& mesh, const Line& line) {
