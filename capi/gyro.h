@@ -34,7 +34,7 @@ extern "C" {
 
 /** ABI version this header describes: (major << 16) | minor. A library with the same
  *  major and a minor >= the header's is compatible. */
-#define GYRO_ABI_VERSION ((1u << 16) | 0u)
+#define GYRO_ABI_VERSION ((1u << 16) | 1u)
 
 /** The ABI version of the linked library; compare with GYRO_ABI_VERSION. */
 GYRO_API uint32_t gyro_abi_version(void);
@@ -50,7 +50,8 @@ enum {
   GYRO_FEATURE_SIMD_NEON = 1u << 4,
   GYRO_FEATURE_MATH = 1u << 8,          /**< math and deterministic trigonometry */
   GYRO_FEATURE_GEOMETRY = 1u << 9,      /**< 3D primitives, batch tests and raycasts */
-  GYRO_FEATURE_2D = 1u << 10            /**< 2D primitives and the quadtree (C++ API) */
+  GYRO_FEATURE_2D = 1u << 10,           /**< 2D primitives and the quadtree (C++ API) */
+  GYRO_FEATURE_SPATIAL = 1u << 11       /**< meshes, BVH, OBJ reader, camera, frustum culling */
 };
 GYRO_API uint32_t gyro_features(void);
 
@@ -239,6 +240,113 @@ GYRO_API gyro_status gyro_overlap_one_against_many(const gyro_shape_soa* one, co
  *  minus the penetration depth (the minimum translation distance). Strict input check. */
 GYRO_API gyro_status gyro_obb_separation_pairwise(const gyro_obb_soa* a, const gyro_obb_soa* b, int32_t count,
                                                   float* out);
+
+
+/* ------------------------------------------------------------------ meshes (spatial module) */
+
+/** primitive value of a ray that mesh and scene queries cannot answer: a NaN or infinite
+ *  coordinate, a zero direction, tmin NaN, infinite or negative, or tmax NaN or below
+ *  tmin. Its t is +infinity and its normal and barycentrics 0; the other rays of the batch
+ *  are answered. (The brute-force calls above fail the whole call instead.) */
+enum { GYRO_RAY_INVALID = -2 };
+
+/** A triangle mesh with its BVH (4-wide, binned SAH). Immutable; may be queried from many
+ *  threads at once. */
+typedef struct gyro_mesh gyro_mesh;
+
+/** Vertex positions (SoA, copied) and 3 vertex indices per triangle. */
+typedef struct gyro_mesh_def {
+  uint32_t struct_size; /**< sizeof(gyro_mesh_def): set by gyro_mesh_def_default */
+  int32_t vertex_count;
+  const float* x;
+  const float* y;
+  const float* z;
+  const uint32_t* indices;
+  int32_t triangle_count;
+  uint32_t reserved; /**< 0 */
+} gyro_mesh_def;
+
+GYRO_API gyro_mesh_def gyro_mesh_def_default(void);
+/** Copies the mesh and builds its BVH. Errors (*out untouched): NULL_ARGUMENT,
+ *  INVALID_COUNT (no triangles, negative counts), NON_FINITE (a NaN or infinite vertex),
+ *  INVALID_ARGUMENT (an index out of range, a wrong struct_size). */
+GYRO_API gyro_status gyro_mesh_create(const gyro_mesh_def* def, gyro_mesh** out);
+/** Reads a Wavefront OBJ file (v and f lines; faces fan-triangulated). A malformed file
+ *  gives INVALID_ARGUMENT with the line number in gyro_last_error(). */
+GYRO_API gyro_status gyro_mesh_load_obj(const char* path, gyro_mesh** out);
+/** Releases the caller's reference; scenes that use the mesh keep it alive. NULL is fine. */
+GYRO_API void gyro_mesh_destroy(gyro_mesh* mesh);
+
+typedef struct gyro_mesh_info {
+  int32_t triangle_count;
+  int32_t bvh_nodes;  /**< 4-wide interior nodes */
+  int32_t bvh_leaves; /**< leaf blocks of up to 4 triangles */
+  int32_t bvh_depth;
+  uint64_t bytes;     /**< BVH, leaf triangles and the mesh copy */
+  float bounds_min[3];
+  float bounds_max[3];
+} gyro_mesh_info;
+
+GYRO_API gyro_status gyro_mesh_get_info(const gyro_mesh* mesh, gyro_mesh_info* out);
+
+/** Closest hit of every ray against the mesh: primitive is the triangle index, -1 for a
+ *  miss or GYRO_RAY_INVALID. Exactly the brute-force answer (ties to the lower index), the
+ *  same bits at every SIMD level and thread count. Errors (nothing written): NULL_ARGUMENT,
+ *  INVALID_COUNT. */
+GYRO_API gyro_status gyro_mesh_raycast_closest(const gyro_mesh* mesh, const gyro_ray_soa* rays, int32_t ray_count,
+                                               const gyro_hit_soa* hits);
+/** Any hit (occlusion): some triangle hit in [tmin, tmax] (the first the traversal finds). */
+GYRO_API gyro_status gyro_mesh_raycast_any(const gyro_mesh* mesh, const gyro_ray_soa* rays, int32_t ray_count,
+                                           const gyro_hit_soa* hits);
+
+/* ------------------------------------------------------------------ camera and frustum */
+
+typedef uint32_t gyro_projection;
+enum { GYRO_PROJECTION_PERSPECTIVE = 0, GYRO_PROJECTION_ORTHOGRAPHIC = 1 };
+
+/** A camera: the eye, its axes (rows: right, up, forward; view space looks down +forward)
+ *  and a projection. Conventions of gyro/camera.hpp (row vectors, depth in [0, 1]). */
+typedef struct gyro_camera {
+  float position[3];
+  float orientation[9]; /**< row-major 3x3: right, up, forward */
+  gyro_projection mode;
+  float fov_y;  /**< perspective: vertical field of view, radians */
+  float aspect; /**< perspective: width / height */
+  float width;  /**< orthographic: view volume size in world units */
+  float height;
+  float z_near;
+  float z_far;
+} gyro_camera;
+
+/** A perspective camera at the origin looking down +z. */
+GYRO_API gyro_camera gyro_camera_perspective(float fov_y, float aspect, float z_near, float z_far);
+/** Points the camera from eye at target (up: the world's up direction). */
+GYRO_API gyro_status gyro_camera_look_at(gyro_camera* camera, const float eye[3], const float target[3],
+                                         const float up[3]);
+/** The view-projection matrix (row-major, row vectors: clip = world * M). */
+GYRO_API gyro_status gyro_camera_view_projection(const gyro_camera* camera, float out[16]);
+/** The ray through a screen point (pixels, origin top-left, y down) of a viewport of the
+ *  given size: origin on the near plane, unit direction. */
+GYRO_API gyro_status gyro_camera_picking_ray(const gyro_camera* camera, float screen_x, float screen_y,
+                                             float viewport_width, float viewport_height, float origin[3],
+                                             float direction[3]);
+
+/** Six planes (left, right, bottom, top, near, far) nx, ny, nz, d with unit normals
+ *  pointing into the frustum: inside is dot(n, p) >= d. */
+typedef struct gyro_frustum {
+  float planes[6][4];
+} gyro_frustum;
+
+/** The frustum of a view-projection matrix (row-major, row vectors). */
+GYRO_API gyro_status gyro_frustum_from_matrix(const float view_projection[16], gyro_frustum* out);
+/** The frustum of a camera. */
+GYRO_API gyro_status gyro_camera_frustum(const gyro_camera* camera, gyro_frustum* out);
+/** visible[i] = 1 when shape i may be visible, 0 when it is certainly outside (a visible
+ *  shape is never culled; a few invisible ones near the frustum's corners are kept). Shapes:
+ *  spheres, AABBs or OBBs. Errors (nothing written): NULL_ARGUMENT, INVALID_COUNT,
+ *  NON_FINITE, INVALID_ARGUMENT (another shape type, planes not unit length). */
+GYRO_API gyro_status gyro_frustum_cull(const gyro_frustum* frustum, const gyro_shape_soa* shapes, int32_t count,
+                                       uint32_t* visible);
 
 #ifdef __cplusplus
 }

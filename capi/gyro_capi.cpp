@@ -2,6 +2,8 @@
 #define GYRO_BUILDING 1
 #include "gyro.h"
 
+#include "capi_support.hpp"
+
 #include "core/error.hpp"
 #include "core/validate.hpp"
 #include "gyro/batch_overlap.hpp"
@@ -15,27 +17,9 @@
 namespace {
 
 using gyro::Status;
-
-template <class F> gyro_status guarded(F&& f) noexcept {
-  try {
-    return static_cast<gyro_status>(f());
-  } catch (const std::bad_alloc&) {
-    return static_cast<gyro_status>(gyro::detail::fail(Status::out_of_memory, "out of memory"));
-  } catch (...) {
-    return static_cast<gyro_status>(gyro::detail::fail(Status::internal, "unexpected exception"));
-  }
-}
-
-Status check_count(int32_t n, const char* name) {
-  return n < 0 ? gyro::detail::fail(Status::invalid_count, "%s = %d is negative", name, n) : Status::ok;
-}
-
-// The C views have exactly the C++ views' layout (asserted below), so they convert by copy.
-template <class To, class From> To view_of(const From& f) { return std::bit_cast<To>(f); }
-static_assert(sizeof(gyro_ray_soa) == sizeof(gyro::RaysView) && sizeof(gyro_hit_soa) == sizeof(gyro::HitsOut));
-static_assert(sizeof(gyro_sphere_soa) == sizeof(gyro::SpheresView) && sizeof(gyro_aabb_soa) == sizeof(gyro::AabbsView) &&
-              sizeof(gyro_obb_soa) == sizeof(gyro::ObbsView) && sizeof(gyro_plane_soa) == sizeof(gyro::PlanesView) &&
-              sizeof(gyro_triangle_soa) == sizeof(gyro::TrianglesView));
+using gyro::capi::check_count;
+using gyro::capi::guarded;
+using gyro::capi::view_of;
 
 gyro::ShapeArray shape_array_of(const gyro_shape_soa& s) {
   gyro::ShapeArray a;
@@ -77,6 +61,9 @@ GYRO_API uint32_t gyro_features(void) {
 #endif
 #if defined(GYRO_HAS_2D)
   f |= GYRO_FEATURE_2D;
+#endif
+#if defined(GYRO_HAS_SPATIAL)
+  f |= GYRO_FEATURE_SPATIAL;
 #endif
   return f;
 }

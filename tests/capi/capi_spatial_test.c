@@ -1,0 +1,148 @@
+/* The spatial module's C ABI from a C99 program: a mesh and its BVH raycasts (with bad rays
+ * flagged per ray), the OBJ reader's line-numbered errors, camera picking and frustum
+ * culling, and bad input that must get a clear status and change nothing. */
+#include "gyro.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+static int failures = 0;
+#define CHECK(cond)                                                              \
+  do {                                                                           \
+    if (!(cond)) {                                                               \
+      fprintf(stderr, "%s:%d: CHECK failed: %s\n", __FILE__, __LINE__, #cond);  \
+      ++failures;                                                                \
+    }                                                                            \
+  } while (0)
+
+/* The cube [-1, 1]^3: 8 corners, 12 outward triangles. */
+static const float vx[8] = {-1, 1, -1, 1, -1, 1, -1, 1};
+static const float vy[8] = {-1, -1, 1, 1, -1, -1, 1, 1};
+static const float vz[8] = {-1, -1, -1, -1, 1, 1, 1, 1};
+static const uint32_t cube[36] = {0, 2, 1, 1, 2, 3, 4, 5, 6, 5, 7, 6, 0, 1, 4, 1, 5, 4,
+                                  2, 6, 3, 3, 6, 7, 0, 4, 2, 2, 4, 6, 1, 3, 5, 3, 7, 5};
+
+static void test_mesh(void) {
+  gyro_mesh_def def = gyro_mesh_def_default();
+  gyro_mesh* mesh = NULL;
+  gyro_mesh* untouched = (gyro_mesh*)&def;
+  gyro_mesh_info info;
+  uint32_t bad_indices[36];
+  float ox[4] = {0, 0, 0, 0}, oy[4] = {0, 0.5f, 0, 0}, oz[4] = {-5, 5, 0, 0};
+  float dx[4] = {0, 0, 0, 0}, dy[4] = {0, 0, 0, 1}, dz[4] = {1, -2, 0, 0};
+  float t[4], nz[4], nxv[4], nyv[4];
+  int32_t prim[4];
+  gyro_ray_soa rays;
+  gyro_hit_soa hits;
+  CHECK(gyro_features() & GYRO_FEATURE_SPATIAL);
+  CHECK(sizeof(gyro_mesh_def) == 48 && sizeof(gyro_mesh_info) == 48);
+  def.x = vx, def.y = vy, def.z = vz, def.vertex_count = 8, def.indices = cube, def.triangle_count = 12;
+  CHECK(gyro_mesh_create(&def, &mesh) == GYRO_OK && mesh != NULL);
+  CHECK(gyro_mesh_get_info(mesh, &info) == GYRO_OK);
+  CHECK(info.triangle_count == 12 && info.bvh_nodes >= 1 && info.bounds_min[0] == -1.0f && info.bounds_max[2] == 1.0f);
+
+  /* bad definitions: a clear status, *out untouched */
+  memcpy(bad_indices, cube, sizeof cube);
+  bad_indices[7] = 8;
+  def.indices = bad_indices;
+  CHECK(gyro_mesh_create(&def, &untouched) == GYRO_STATUS_INVALID_ARGUMENT && untouched == (gyro_mesh*)&def);
+  CHECK(strstr(gyro_last_error(), "triangle 2") != NULL);
+  def.indices = cube;
+  def.triangle_count = -1;
+  CHECK(gyro_mesh_create(&def, &untouched) == GYRO_STATUS_INVALID_COUNT);
+  def.triangle_count = 0;
+  CHECK(gyro_mesh_create(&def, &untouched) == GYRO_STATUS_INVALID_COUNT);
+  def.triangle_count = 12;
+  def.struct_size = 12;
+  CHECK(gyro_mesh_create(&def, &untouched) == GYRO_STATUS_INVALID_ARGUMENT);
+  def.struct_size = sizeof def;
+  def.y = NULL;
+  CHECK(gyro_mesh_create(&def, &untouched) == GYRO_STATUS_NULL_ARGUMENT);
+  CHECK(untouched == (gyro_mesh*)&def);
+
+  /* rays: into the front face, from above inside the box, a zero direction, a NaN origin */
+  ox[3] = NAN;
+  rays.ox = ox, rays.oy = oy, rays.oz = oz, rays.dx = dx, rays.dy = dy, rays.dz = dz, rays.tmin = NULL, rays.tmax = NULL;
+  hits.t = t, hits.primitive = prim, hits.nx = nxv, hits.ny = nyv, hits.nz = nz, hits.u = NULL, hits.v = NULL;
+  CHECK(gyro_mesh_raycast_closest(mesh, &rays, 4, &hits) == GYRO_OK);
+  CHECK(prim[0] >= 0 && prim[0] < 2 && t[0] == 4.0f && nz[0] == -1.0f);
+  CHECK(prim[1] >= 0 && t[1] == 2.0f); /* from (0, 0.5, 5) along -2z: the z = 1 face at t = 2 */
+  CHECK(prim[2] == GYRO_RAY_INVALID && prim[3] == GYRO_RAY_INVALID && t[3] == INFINITY);
+  CHECK(gyro_mesh_raycast_any(mesh, &rays, 4, &hits) == GYRO_OK);
+  CHECK(prim[0] >= 0 && prim[2] == GYRO_RAY_INVALID);
+  CHECK(gyro_mesh_raycast_closest(NULL, &rays, 4, &hits) == GYRO_STATUS_NULL_ARGUMENT);
+  CHECK(gyro_mesh_raycast_closest(mesh, &rays, -4, &hits) == GYRO_STATUS_INVALID_COUNT);
+  gyro_mesh_destroy(mesh);
+  gyro_mesh_destroy(NULL);
+}
+
+static void test_obj(void) {
+  const char* path = "gyro_capi_spatial_test.obj";
+  gyro_mesh* mesh = NULL;
+  gyro_mesh_info info;
+  FILE* f = fopen(path, "w");
+  CHECK(f != NULL);
+  if (!f) return;
+  fputs("# a quad\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n", f);
+  fclose(f);
+  CHECK(gyro_mesh_load_obj(path, &mesh) == GYRO_OK && mesh != NULL);
+  CHECK(gyro_mesh_get_info(mesh, &info) == GYRO_OK && info.triangle_count == 2);
+  gyro_mesh_destroy(mesh);
+  f = fopen(path, "w");
+  if (!f) return;
+  fputs("v 0 0 0\nv 1 0 0\nv 1 1 zero\nf 1 2 3\n", f);
+  fclose(f);
+  mesh = NULL;
+  CHECK(gyro_mesh_load_obj(path, &mesh) == GYRO_STATUS_INVALID_ARGUMENT && mesh == NULL);
+  CHECK(strstr(gyro_last_error(), "line 3") != NULL);
+  remove(path);
+  CHECK(gyro_mesh_load_obj("/nonexistent/gyro.obj", &mesh) == GYRO_STATUS_INVALID_ARGUMENT && mesh == NULL);
+  CHECK(gyro_mesh_load_obj(NULL, &mesh) == GYRO_STATUS_NULL_ARGUMENT);
+}
+
+static void test_camera_and_frustum(void) {
+  gyro_camera cam = gyro_camera_perspective(1.0f, 16.0f / 9.0f, 0.1f, 100.0f);
+  const float eye[3] = {0, 5, -10}, target[3] = {0, 0, 0}, up[3] = {0, 1, 0};
+  float o[3], d[3], vp[16], len;
+  gyro_frustum fr, from_matrix;
+  float cx[3] = {0, 0, 0}, cy[3] = {0, 5, 0}, cz[3] = {0, -30, 300}, r[3] = {1, 1, 1};
+  uint32_t visible[3] = {7, 7, 7};
+  gyro_shape_soa spheres;
+  int i, k;
+  CHECK(sizeof(gyro_camera) == 76 && sizeof(gyro_frustum) == 96);
+  CHECK(gyro_camera_look_at(&cam, eye, target, up) == GYRO_OK);
+  /* the centre of the screen looks at the target */
+  CHECK(gyro_camera_picking_ray(&cam, 960.0f, 540.0f, 1920.0f, 1080.0f, o, d) == GYRO_OK);
+  len = sqrtf(125.0f);
+  CHECK(fabsf(d[0]) < 1e-5f && fabsf(d[1] + 5.0f / len) < 1e-5f && fabsf(d[2] - 10.0f / len) < 1e-5f);
+  CHECK(gyro_camera_picking_ray(&cam, 0, 0, 0.0f, 1080.0f, o, d) == GYRO_STATUS_INVALID_ARGUMENT);
+  CHECK(gyro_camera_frustum(&cam, &fr) == GYRO_OK);
+  CHECK(gyro_camera_view_projection(&cam, vp) == GYRO_OK);
+  CHECK(gyro_frustum_from_matrix(vp, &from_matrix) == GYRO_OK);
+  for (i = 0; i < 6; ++i)
+    for (k = 0; k < 4; ++k) CHECK(fabsf(fr.planes[i][k] - from_matrix.planes[i][k]) < 1e-4f * (1.0f + fabsf(fr.planes[i][k])));
+  spheres.type = GYRO_SHAPE_SPHERE, spheres.reserved = 0;
+  spheres.as.sphere.cx = cx, spheres.as.sphere.cy = cy, spheres.as.sphere.cz = cz, spheres.as.sphere.r = r;
+  CHECK(gyro_frustum_cull(&fr, &spheres, 3, visible) == GYRO_OK);
+  CHECK(visible[0] == 1 && visible[1] == 0 && visible[2] == 0); /* target; behind the eye; past the far plane */
+  spheres.type = GYRO_SHAPE_PLANE;
+  visible[0] = 7;
+  CHECK(gyro_frustum_cull(&fr, &spheres, 3, visible) == GYRO_STATUS_INVALID_ARGUMENT && visible[0] == 7);
+  cam.z_near = -1.0f;
+  CHECK(gyro_camera_frustum(&cam, &fr) == GYRO_STATUS_INVALID_ARGUMENT);
+  vp[3] = NAN;
+  CHECK(gyro_frustum_from_matrix(vp, &fr) == GYRO_STATUS_NON_FINITE);
+}
+
+int main(void) {
+  test_mesh();
+  test_obj();
+  test_camera_and_frustum();
+  if (failures) {
+    fprintf(stderr, "%d checks failed\n", failures);
+    return 1;
+  }
+  printf("capi spatial: all checks passed\n");
+  return 0;
+}
