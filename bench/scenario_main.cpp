@@ -11,12 +11,21 @@ namespace gyro::bench {
 void run_r1s(const Options&);
 void run_n1(const Options&);
 void run_g1(const Options&);
+void run_r1(const Options&);
+void run_r2(const Options&);
+void run_lidar(const Options&);
+void run_camera(const Options&);
 
 namespace {
 const Workload kWorkloads[] = {
     {"R1S", "10k R1 rays x 10k spheres, closest hit, brute force, per SIMD level and thread count", run_r1s},
     {"N1", "10^6 OBB pairs, separating axes (boolean and depth); peers: Bullet box-box, libccd GJK/MPR/EPA", run_n1},
     {"G1", "geometry kernels per SIMD level: pairwise overlaps (10^6 pairs), brute-force raycasts", run_g1},
+    {"R1", "10^6 rays x 10k spheres, closest hit (gyro: brute force on 20k rays); peers: Embree sphere points, Bullet",
+     run_r1},
+    {"R2", "10^6 rays onto a 522k-triangle terrain, closest hit through gyro's BVH; peers: Embree, Bullet", run_r2},
+    {"LIDAR", "64 x 2048 lidar fan inside the R2 terrain, tmax 120; peers: Embree, Bullet", run_lidar},
+    {"CAMERA", "1920 x 1080 primary rays over the R2 terrain; peers: Embree, Bullet", run_camera},
 };
 
 int usage() {

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "gyro/batch_raycast.hpp"
+#include "gyro/mesh.hpp"
 #include "gyro/shape_arrays.hpp"
 
 #include <cstddef>
@@ -89,5 +90,50 @@ RaySet r1_rays(std::size_t count = 1000000);
 // Check values quoted in BENCHMARKS.md.
 inline constexpr uint64_t kR1SpheresFnv = 0x10eb42770d113cf1ull;
 inline constexpr uint64_t kR1RaysFnv = 0x849e1c43d71c3f3full;
+
+/// R2 terrain: 512 x 512 vertices on [0, 100]^2 (vertex j*512 + i at x = 100 i/511,
+/// z = 100 j/511), 522,242 triangles, two per cell in BENCHMARKS.md's order; normals +y.
+inline constexpr uint32_t kR2GridVertices = 512;
+MeshData r2_mesh();
+/// R2's height y(x, z) in binary64, evaluated as BENCHMARKS.md writes it (the vertices store
+/// f32 of it at the grid points).
+double r2_height(double x, double z);
+/// R2 rays: seed 3, from (ox, 20, oz) towards (tx, -10, tz); every one hits the terrain.
+RaySet r2_rays(std::size_t count = 1000000);
+/// fnv1a64 over x, y, z per vertex / over the uint32 indices, as BENCHMARKS.md hashes them.
+uint64_t mesh_vertices_fnv(const MeshData& mesh);
+uint64_t mesh_indices_fnv(const MeshData& mesh);
+inline constexpr uint64_t kR2VerticesFnv = 0x83aaa9c151d2a02eull;
+inline constexpr uint64_t kR2IndicesFnv = 0x52f75acd6aac20d4ull;
+inline constexpr uint64_t kR2RaysFnv = 0x3306ae586b845988ull;
+/// Every workload ray of R1, R2 and CAMERA is queried on [0, 1000].
+inline constexpr float kRayTmax = 1000.0f;
+
+/// LIDAR (gyro's own workload, no randomness): a spinning 64-channel sensor inside the R2
+/// scene. Origin (50, f32(r2_height(50, 50) + 2), 50), 2 m above the terrain (the mesh
+/// departs from r2_height by less than 1 cm between grid points). Ray c*64 + k (column
+/// c = 0..2047 outer, channel k = 0..63 inner) has elevation e = (-25 + (40*k)/63) degrees
+/// and azimuth a = (2*pi*c)/2048, both converted to radians in binary64 as e * (pi / 180), and
+/// direction d = (f32(cos e * cos a), f32(sin e), f32(cos e * sin a)) with binary64 libm
+/// sin/cos (unit to about 1e-7, not renormalised). Queried on [0, kLidarTmax].
+/// The origin lies on the cell diagonals' line x + z = 100, so the columns at azimuth 135
+/// and 315 degrees run along shared edges: a watertightness test. Binary64 reference (the
+/// bench's grid walk): 129,896 hits, sum t 650,990.56.
+inline constexpr uint32_t kLidarChannels = 64, kLidarColumns = 2048;
+inline constexpr float kLidarTmax = 120.0f;
+RaySet lidar_rays();
+
+/// CAMERA (gyro's own workload, no randomness): one primary ray per pixel of a
+/// width x height image from a pinhole camera above the R2 terrain, pitched 30 degrees
+/// down, looking along +z, vertical field of view 60 degrees. In binary64:
+///   eye = (50, 30, 10), 30deg = pi / 6, forward f = (0, -sin 30deg, cos 30deg), up
+///   u = (0, cos 30deg, sin 30deg), right r = (-1, 0, 0) (a right-handed view: +x is on the image's left),
+///   th = tan 30deg, aspect = width / height; pixel (px, py), py = 0 the top row, row-major:
+///   sx = ((2*(px + 0.5))/width - 1) * th * aspect, sy = (1 - (2*(py + 0.5))/height) * th,
+///   w = f + sx*r + sy*u (each component left to right), d = f32(w / |w|),
+///   |w| = sqrt((wx*wx + wy*wy) + wz*wz); o = f32(eye) for every ray.
+/// The top row looks at the horizon and mostly misses; the centre hits near z = 62.
+/// Queried on [0, kRayTmax]. Binary64 reference: 1,283,638 hits, sum t 69,804,288.77.
+RaySet camera_rays(uint32_t width = 1920, uint32_t height = 1080);
 
 }  // namespace gyro::testing

@@ -1,0 +1,210 @@
+// Embree 3 as a peer (Debian's build: dispatches to the best ISA of the CPU at run time):
+// a triangle scene for R2/LIDAR/CAMERA and a sphere-point scene for R1, traced with
+// rtcIntersect1 in a loop or rtcIntersect16 packets. Build cost is measured from
+// rtcNewScene to the end of rtcCommitScene; memory through the device's memory monitor
+// (the vertex/index buffers are shared with the caller, so only Embree's own BVH and
+// leaf data are counted).
+#include "peers.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <limits>
+#include <string>
+#include <thread>
+
+#if defined(GYRO_BENCH_HAS_EMBREE)
+#include <embree3/rtcore.h>
+#endif
+
+namespace gyro::bench {
+
+#if defined(GYRO_BENCH_HAS_EMBREE)
+
+struct EmbreeScene::Impl {
+  RTCDevice device = nullptr;
+  RTCScene scene = nullptr;
+  std::vector<float> vertices;    // AoS, padded: Embree may read 16 bytes at the last vertex
+  std::vector<uint32_t> indices;  // 3 per triangle, padded likewise
+  std::atomic<int64_t> bytes{0}, peak{0};
+
+  ~Impl() {
+    if (scene) rtcReleaseScene(scene);
+    if (device) rtcReleaseDevice(device);
+  }
+};
+
+namespace {
+
+bool monitor(void* user, ssize_t bytes, bool /*post*/) {
+  auto* impl = static_cast<EmbreeScene::Impl*>(user);
+  const int64_t now = impl->bytes += bytes;
+  int64_t peak = impl->peak.load();
+  while (now > peak && !impl->peak.compare_exchange_weak(peak, now)) {
+  }
+  return true;
+}
+
+std::unique_ptr<EmbreeScene::Impl> new_device(uint32_t build_threads) {
+  auto impl = std::make_unique<EmbreeScene::Impl>();
+  const std::string config = "threads=" + std::to_string(std::max(1u, build_threads));
+  impl->device = rtcNewDevice(config.c_str());
+  if (!impl->device) return nullptr;
+  rtcSetDeviceMemoryMonitorFunction(impl->device, monitor, impl.get());
+  return impl;
+}
+
+// Commits the geometry into a new scene and times the build; fills `build`.
+bool commit(EmbreeScene::Impl& impl, RTCGeometry geom, RTCSceneFlags flags, std::chrono::steady_clock::time_point start,
+            PeerBuild& build) {
+  rtcCommitGeometry(geom);
+  rtcAttachGeometry(impl.scene, geom);
+  rtcReleaseGeometry(geom);
+  rtcSetSceneFlags(impl.scene, flags);
+  rtcCommitScene(impl.scene);
+  const auto end = std::chrono::steady_clock::now();
+  build.ms = std::chrono::duration<double, std::milli>(end - start).count();
+  build.bytes = std::size_t(std::max<int64_t>(0, impl.bytes.load()));
+  build.peak_bytes = std::size_t(std::max<int64_t>(0, impl.peak.load()));
+  return rtcGetDeviceError(impl.device) == RTC_ERROR_NONE;
+}
+
+void trace_range1(RTCScene scene, const testing::RaySet& r, std::size_t begin, std::size_t end, float tmax,
+                  RayResults& out) {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  for (std::size_t i = begin; i < end; ++i) {
+    RTCRayHit rh;
+    rh.ray.org_x = r.ox[i], rh.ray.org_y = r.oy[i], rh.ray.org_z = r.oz[i], rh.ray.tnear = 0.0f;
+    rh.ray.dir_x = r.dx[i], rh.ray.dir_y = r.dy[i], rh.ray.dir_z = r.dz[i], rh.ray.time = 0.0f;
+    rh.ray.tfar = tmax, rh.ray.mask = ~0u, rh.ray.id = 0, rh.ray.flags = 0;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID, rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(scene, &context, &rh);
+    const bool hit = rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
+    out.t[i] = hit ? rh.ray.tfar : std::numeric_limits<float>::infinity();
+    out.primitive[i] = hit ? int32_t(rh.hit.primID) : -1;
+  }
+}
+
+void trace_range16(RTCScene scene, const testing::RaySet& r, std::size_t begin, std::size_t end, float tmax,
+                   RayResults& out) {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  for (std::size_t p = begin; p < end; p += 16) {
+    alignas(64) int valid[16];
+    RTCRayHit16 rh;
+    for (int k = 0; k < 16; ++k) {
+      const std::size_t i = p + std::size_t(k);
+      const bool live = i < end;
+      const std::size_t s = live ? i : begin;  // a finite ray in the dead lanes
+      valid[k] = live ? -1 : 0;
+      rh.ray.org_x[k] = r.ox[s], rh.ray.org_y[k] = r.oy[s], rh.ray.org_z[k] = r.oz[s], rh.ray.tnear[k] = 0.0f;
+      rh.ray.dir_x[k] = r.dx[s], rh.ray.dir_y[k] = r.dy[s], rh.ray.dir_z[k] = r.dz[s], rh.ray.time[k] = 0.0f;
+      rh.ray.tfar[k] = tmax, rh.ray.mask[k] = ~0u, rh.ray.id[k] = unsigned(k), rh.ray.flags[k] = 0;
+      rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID, rh.hit.primID[k] = RTC_INVALID_GEOMETRY_ID;
+      rh.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
+    }
+    rtcIntersect16(valid, scene, &context, &rh);
+    for (int k = 0; k < 16 && p + std::size_t(k) < end; ++k) {
+      const std::size_t i = p + std::size_t(k);
+      const bool hit = rh.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID;
+      out.t[i] = hit ? rh.ray.tfar[k] : std::numeric_limits<float>::infinity();
+      out.primitive[i] = hit ? int32_t(rh.hit.primID[k]) : -1;
+    }
+  }
+}
+
+}  // namespace
+
+bool embree_available() { return true; }
+const char* embree_version() { return RTC_VERSION_STRING; }
+bool embree_native_ray16() {
+  RTCDevice d = rtcNewDevice("threads=1");
+  if (!d) return false;
+  const bool native = rtcGetDeviceProperty(d, RTC_DEVICE_PROPERTY_NATIVE_RAY16_SUPPORTED) != 0;
+  rtcReleaseDevice(d);
+  return native;
+}
+
+EmbreeScene::EmbreeScene(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+EmbreeScene::~EmbreeScene() = default;
+
+std::unique_ptr<EmbreeScene> EmbreeScene::triangles(const MeshData& mesh, bool robust, uint32_t build_threads,
+                                                    PeerBuild& build) {
+  auto impl = new_device(build_threads);
+  if (!impl) return nullptr;
+  const std::size_t nv = mesh.vertex_count(), nt = mesh.triangle_count();
+  impl->vertices.resize(3 * nv + 1);
+  for (std::size_t v = 0; v < nv; ++v)
+    impl->vertices[3 * v] = mesh.x[v], impl->vertices[3 * v + 1] = mesh.y[v], impl->vertices[3 * v + 2] = mesh.z[v];
+  impl->indices.assign(mesh.indices.begin(), mesh.indices.end());
+  impl->indices.push_back(0);
+  impl->bytes = 0, impl->peak = 0;
+  const auto start = std::chrono::steady_clock::now();
+  impl->scene = rtcNewScene(impl->device);
+  RTCGeometry geom = rtcNewGeometry(impl->device, RTC_GEOMETRY_TYPE_TRIANGLE);
+  rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, impl->vertices.data(), 0,
+                             3 * sizeof(float), nv);
+  rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, impl->indices.data(), 0,
+                             3 * sizeof(uint32_t), nt);
+  if (!commit(*impl, geom, robust ? RTC_SCENE_FLAG_ROBUST : RTC_SCENE_FLAG_NONE, start, build)) return nullptr;
+  return std::unique_ptr<EmbreeScene>(new EmbreeScene(std::move(impl)));
+}
+
+std::unique_ptr<EmbreeScene> EmbreeScene::spheres(const testing::SphereSet& s, uint32_t build_threads,
+                                                  PeerBuild& build) {
+  auto impl = new_device(build_threads);
+  if (!impl) return nullptr;
+  const std::size_t n = s.size();
+  impl->vertices.resize(4 * n);
+  for (std::size_t i = 0; i < n; ++i)
+    impl->vertices[4 * i] = s.cx[i], impl->vertices[4 * i + 1] = s.cy[i], impl->vertices[4 * i + 2] = s.cz[i],
+                       impl->vertices[4 * i + 3] = s.r[i];
+  impl->bytes = 0, impl->peak = 0;
+  const auto start = std::chrono::steady_clock::now();
+  impl->scene = rtcNewScene(impl->device);
+  RTCGeometry geom = rtcNewGeometry(impl->device, RTC_GEOMETRY_TYPE_SPHERE_POINT);
+  rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, impl->vertices.data(), 0,
+                             4 * sizeof(float), n);
+  if (!commit(*impl, geom, RTC_SCENE_FLAG_NONE, start, build)) return nullptr;
+  return std::unique_ptr<EmbreeScene>(new EmbreeScene(std::move(impl)));
+}
+
+void EmbreeScene::trace(const testing::RaySet& rays, std::size_t n, float tmax, EmbreeMethod method, uint32_t threads,
+                        RayResults& out) const {
+  out.resize(n);
+  constexpr std::size_t kChunk = 4096;  // a multiple of 16: packets never straddle chunks
+  std::atomic<std::size_t> next{0};
+  auto worker = [&] {
+    for (std::size_t b; (b = next.fetch_add(kChunk)) < n;) {
+      const std::size_t e = std::min(n, b + kChunk);
+      if (method == EmbreeMethod::intersect1)
+        trace_range1(impl_->scene, rays, b, e, tmax, out);
+      else
+        trace_range16(impl_->scene, rays, b, e, tmax, out);
+    }
+  };
+  std::vector<std::thread> pool;
+  for (uint32_t k = 1; k < threads; ++k) pool.emplace_back(worker);
+  worker();
+  for (std::thread& t : pool) t.join();
+}
+
+#else
+
+struct EmbreeScene::Impl {};
+bool embree_available() { return false; }
+const char* embree_version() { return "none"; }
+bool embree_native_ray16() { return false; }
+EmbreeScene::EmbreeScene(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+EmbreeScene::~EmbreeScene() = default;
+std::unique_ptr<EmbreeScene> EmbreeScene::triangles(const MeshData&, bool, uint32_t, PeerBuild&) { return nullptr; }
+std::unique_ptr<EmbreeScene> EmbreeScene::spheres(const testing::SphereSet&, uint32_t, PeerBuild&) { return nullptr; }
+void EmbreeScene::trace(const testing::RaySet&, std::size_t n, float, EmbreeMethod, uint32_t, RayResults& out) const {
+  out.resize(n);
+}
+
+#endif
+
+}  // namespace gyro::bench

@@ -1,0 +1,492 @@
+// Ray workloads with acceleration structures (BENCHMARKS.md R1 and R2, and gyro's own LIDAR
+// and CAMERA over the R2 terrain): gyro against Embree 3 and Bullet on identical rays.
+//
+// Every line reports, over the rays it traced: hits (t in [0, tmax]), the checksum (sum of
+// the float t over hits, in ray order, in binary64) and its error against a binary64
+// reference:
+//  - R1: the brute-force quadratic of tests/support/reference.hpp on the first 20,000 rays
+//    (BENCHMARKS.md's surface semantics: a ray starting inside a sphere reports its exit);
+//  - R2, LIDAR, CAMERA: a binary64 walk over the terrain's grid of cells (below), testing
+//    every triangle of every cell the ray can cross, so it needs no BVH to trust.
+// A ray disagrees when its hit/miss verdict differs from the reference, or its t differs by
+// more than 1e-3 max(1, t_ref) (a leak through the surface hits something farther away);
+// max_abs_dt is the largest |t - t_ref| over the agreeing hits.
+//
+// gyro runs per thread count at its best SIMD level, or at each level --simd names (R1:
+// brute force on the reference subsample, as gyro has no sphere BVH yet). Peers run per
+// thread count; Bullet on one thread only, on a subsample of 100,000 rays (every k-th ray
+// of the coherent LIDAR/CAMERA sets) or GYRO_BENCH_BULLET_RAYS, said in "rays". ratio_vs on
+// a peer line = its throughput / gyro's (gyro's best level, same thread count): below 1,
+// gyro is faster. A comment line before a line with errors names its first wrong rays.
+#include "gyro/batch_raycast.hpp"
+#include "gyro/triangle_mesh.hpp"
+#include "peers.hpp"
+#include "reference.hpp"
+#include "scenario.hpp"
+#include "workloads.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <limits>
+#include <map>
+#include <string>
+
+namespace gyro::bench {
+namespace {
+
+using testing::RaySet;
+
+constexpr std::size_t kR1ReferenceRays = 20000;  // R1's binary64 brute force, and gyro's
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// Bullet traces at most this many rays (it is slow); GYRO_BENCH_BULLET_RAYS overrides it.
+std::size_t bullet_rays() {
+  const char* v = std::getenv("GYRO_BENCH_BULLET_RAYS");
+  const long long n = v ? std::atoll(v) : 0;
+  return n > 0 ? std::size_t(n) : 100000;
+}
+
+double ms_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+/// One workload's rays, query range and binary64 reference (for rays [0, ref.size())).
+struct RayCase {
+  const char* workload = "";
+  RaySet rays;
+  float tmax = testing::kRayTmax;
+  std::vector<double> ref;  // closest t, +inf on a miss
+  bool ordered = false;     // rays are spatially coherent: subsample with a stride
+};
+
+/// Every stride-th ray (and its reference where there is one), count rays at most.
+RayCase subsample(const RayCase& c, std::size_t count) {
+  const std::size_t n = c.rays.size();
+  if (n <= count) return c;
+  const std::size_t stride = c.ordered ? (n + count - 1) / count : 1;
+  RayCase s;
+  s.workload = c.workload, s.tmax = c.tmax, s.ordered = c.ordered;
+  for (std::size_t i = 0, k = 0; i < n && k < count; i += stride, ++k) {
+    s.rays.push(c.rays.ox[i], c.rays.oy[i], c.rays.oz[i], c.rays.dx[i], c.rays.dy[i], c.rays.dz[i]);
+    if (i < c.ref.size()) s.ref.push_back(c.ref[i]);
+  }
+  return s;
+}
+
+// ---------------------------------------------------------------- the terrain reference
+
+/// Closest hit on the R2 terrain in binary64. The ray is clipped to the terrain's box, then
+/// the columns of cells (x between grid lines i and i + 1) it crosses are visited in ray
+/// order; in each column every cell whose z range the ray spans (plus one cell each side,
+/// and a margin in x, to cover the float vertices' rounding) has both triangles tested with
+/// the double-sided binary64 Moller-Trumbore test, unless the ray's height over the cell
+/// misses the cell's height range. The walk stops at the first column that starts beyond
+/// the best hit. Relies on r2_mesh()'s layout: cell (i, j) holds triangles 2(511 j + i) + {0, 1}.
+class TerrainReference {
+ public:
+  explicit TerrainReference(const MeshData& mesh) : mesh_(mesh) {
+    ymin_ = *std::min_element(mesh.y.begin(), mesh.y.end());
+    ymax_ = *std::max_element(mesh.y.begin(), mesh.y.end());
+    cell_lo_.resize(std::size_t(kCells) * kCells), cell_hi_.resize(cell_lo_.size());
+    for (std::size_t c = 0; c < cell_lo_.size(); ++c) {
+      float lo = mesh.y[mesh.indices[6 * c]], hi = lo;
+      for (std::size_t k = 6 * c; k < 6 * c + 6; ++k)
+        lo = std::min(lo, mesh.y[mesh.indices[k]]), hi = std::max(hi, mesh.y[mesh.indices[k]]);
+      cell_lo_[c] = lo, cell_hi_[c] = hi;
+    }
+  }
+
+  double closest(const RaySet& r, std::size_t i, double tmax) const {
+    const double o[3] = {r.ox[i], r.oy[i], r.oz[i]}, d[3] = {r.dx[i], r.dy[i], r.dz[i]};
+    const double lo[3] = {-kMargin, ymin_ - kMargin, -kMargin},
+                 hi[3] = {kSize + kMargin, ymax_ + kMargin, kSize + kMargin};
+    double ta = 0, tb = tmax;
+    for (int k = 0; k < 3; ++k) {
+      if (d[k] == 0) {
+        if (o[k] < lo[k] || o[k] > hi[k]) return kInf;
+        continue;
+      }
+      double t0 = (lo[k] - o[k]) / d[k], t1 = (hi[k] - o[k]) / d[k];
+      if (t0 > t1) std::swap(t0, t1);
+      ta = std::max(ta, t0), tb = std::min(tb, t1);
+    }
+    if (ta > tb) return kInf;
+    const int ia = cell_of(o[0] + ta * d[0]), ib = cell_of(o[0] + tb * d[0]);
+    const int step = d[0] >= 0 ? 1 : -1;
+    const int first = std::clamp((step > 0 ? std::min(ia, ib) : std::max(ia, ib)) - step, 0, kCells - 1);
+    const int last = std::clamp((step > 0 ? std::max(ia, ib) : std::min(ia, ib)) + step, 0, kCells - 1);
+    double best = kInf;
+    for (int ci = first;; ci += step) {
+      double c0 = ta, c1 = tb;
+      if (d[0] != 0) {
+        double t0 = (kSize * ci / kCells - kMargin - o[0]) / d[0],
+               t1 = (kSize * (ci + 1) / kCells + kMargin - o[0]) / d[0];
+        if (t0 > t1) std::swap(t0, t1);
+        c0 = std::max(c0, t0), c1 = std::min(c1, t1);
+      }
+      if (c0 > best) break;
+      if (c0 <= c1) {
+        const double za = o[2] + c0 * d[2], zb = o[2] + c1 * d[2];
+        const int j0 = std::max(0, cell_of(std::min(za, zb)) - 1),
+                  j1 = std::min(kCells - 1, cell_of(std::max(za, zb)) + 1);
+        for (int cj = j0; cj <= j1; ++cj) {
+          // Skip a cell when the ray's height over its rectangle misses the cell's heights
+          // (its triangles lie within them); the margins dwarf the rounding of t and y.
+          double r0 = c0, r1 = c1;
+          if (d[2] != 0) {
+            double t0 = (kSize * cj / kCells - kMargin - o[2]) / d[2],
+                   t1 = (kSize * (cj + 1) / kCells + kMargin - o[2]) / d[2];
+            if (t0 > t1) std::swap(t0, t1);
+            r0 = std::max(r0, t0), r1 = std::min(r1, t1);
+          }
+          if (r0 > r1) continue;
+          const double ya = o[1] + r0 * d[1], yb = o[1] + r1 * d[1];
+          const std::size_t cell = std::size_t(cj) * kCells + std::size_t(ci);
+          if (std::max(ya, yb) < double(cell_lo_[cell]) - 1e-6 || std::min(ya, yb) > double(cell_hi_[cell]) + 1e-6)
+            continue;
+          for (std::size_t tri = 2 * (std::size_t(cj) * kCells + std::size_t(ci)), e = tri + 2; tri < e; ++tri) {
+            const double t = triangle_t(tri, o, d);
+            if (t <= tmax && t < best) best = t;
+          }
+        }
+      }
+      if (ci == last) break;
+    }
+    return best;
+  }
+
+ private:
+  static constexpr int kCells = 511;
+  static constexpr double kSize = 100.0, kMargin = 1e-4;
+  static int cell_of(double x) { return int(std::floor(x * (kCells / kSize))); }
+
+  double triangle_t(std::size_t tri, const double o[3], const double d[3]) const {
+    const uint32_t* v = &mesh_.indices[3 * tri];
+    auto at = [&](uint32_t k) { return testing::d3(mesh_.x[k], mesh_.y[k], mesh_.z[k]); };
+    return testing::ref_ray_triangle_t({o[0], o[1], o[2]}, {d[0], d[1], d[2]}, at(v[0]), at(v[1]), at(v[2]));
+  }
+
+  const MeshData& mesh_;
+  double ymin_ = 0, ymax_ = 0;
+  std::vector<float> cell_lo_, cell_hi_;  // height range of cell j*511 + i (both triangles)
+};
+
+std::vector<double> terrain_reference(const MeshData& mesh, const RaySet& rays, float tmax) {
+  const TerrainReference ref(mesh);
+  std::vector<double> t(rays.size());
+  const std::ptrdiff_t n = std::ptrdiff_t(rays.size());
+#pragma omp parallel for schedule(dynamic, 1024)
+  for (std::ptrdiff_t i = 0; i < n; ++i) t[std::size_t(i)] = ref.closest(rays, std::size_t(i), tmax);
+  return t;
+}
+
+// ---------------------------------------------------------------- scoring and output
+
+struct Score {
+  std::size_t rays = 0, hits = 0, compared = 0, disagree = 0, ref_hits = 0;
+  double checksum = 0, ref_checksum = 0, max_abs_dt = 0;
+  std::string examples;  // the first three disagreeing rays, for a comment line
+};
+
+Score score(const float* t, std::size_t n, float tmax, const std::vector<double>& ref) {
+  Score s;
+  s.rays = n;
+  s.compared = std::min(n, ref.size());
+  for (std::size_t i = 0; i < n; ++i) {
+    const bool hit = t[i] >= 0.0f && t[i] <= tmax;
+    if (hit) ++s.hits, s.checksum += double(t[i]);
+    if (i >= s.compared) continue;
+    const bool ref_hit = ref[i] <= double(tmax);
+    if (ref_hit) ++s.ref_hits, s.ref_checksum += double(float(ref[i]));
+    bool agree = hit == ref_hit;
+    if (agree && hit) {
+      const double dt = std::abs(double(t[i]) - ref[i]);
+      agree = dt <= 1e-3 * std::max(1.0, ref[i]);
+      if (agree) s.max_abs_dt = std::max(s.max_abs_dt, dt);
+    }
+    if (!agree && ++s.disagree <= 3) {
+      char buf[96];
+      std::snprintf(buf, sizeof buf, " ray %zu: t %.7g, ref %.9g;", i, double(t[i]), ref[i]);
+      s.examples += buf;
+    }
+  }
+  return s;
+}
+
+struct Line {
+  const char* library;
+  std::string method;
+  std::string simd;
+  uint32_t threads;
+  double build_ms;
+  std::size_t bytes;
+  std::size_t primitives;  // triangles or spheres, for bytes per primitive
+  double ms;
+  int reps;
+};
+
+const char* error_metric(const RayCase& c) {
+  return std::string(c.workload) == "R1"
+             ? "rays disagreeing with the binary64 brute force (hit/miss, or t beyond 1e-3 max(1,t))"
+             : "rays disagreeing with the binary64 grid walk (hit/miss, or t beyond 1e-3 max(1,t))";
+}
+
+// Prints a line; returns its throughput (Mrays/s).
+double emit(const RayCase& c, const Line& l, const Score& s, const char* per, double gyro_mrays = 0) {
+  const double mrays = double(s.rays) / l.ms / 1e3;
+  if (s.disagree)
+    std::printf("# %s %s %s: disagreeing%s\n", c.workload, l.library, l.method.c_str(), s.examples.c_str());
+  JsonLine j;
+  j.str("workload", c.workload)
+      .str("library", l.library)
+      .str("method", l.method)
+      .str("simd", l.simd)
+      .integer("threads", l.threads)
+      .num("build_ms", l.build_ms, 4)
+      .num("time_ms", l.ms, 5)
+      .num("throughput", mrays, 4)
+      .str("unit", "Mrays/s")
+      .integer("hits", int64_t(s.hits))
+      .num("checksum", s.checksum, 12)
+      .num("error", double(s.disagree))
+      .str("error_metric", error_metric(c))
+      .integer("error_rays", int64_t(s.compared))
+      .num("max_abs_dt", s.max_abs_dt, 3)
+      .integer("ref_hits", int64_t(s.ref_hits))
+      .num("ref_checksum", s.ref_checksum, 12)
+      .integer("rays", int64_t(s.rays))
+      .integer("reps", l.reps);
+  if (l.bytes) j.integer("bytes", int64_t(l.bytes)).num(per, double(l.bytes) / double(l.primitives), 4);
+  if (gyro_mrays > 0) j.num("ratio_vs", mrays / gyro_mrays, 4);
+  j.print();
+  return mrays;
+}
+
+std::vector<float> tmax_column(const RayCase& c, std::size_t n) { return std::vector<float>(n, c.tmax); }
+
+RaysView view_with_tmax(const RaySet& r, const std::vector<float>& tmax) {
+  RaysView v = r.view();
+  v.tmax = tmax.data();
+  return v;
+}
+
+// ---------------------------------------------------------------- gyro
+
+using GyroRates = std::map<uint32_t, double>;  // Mrays/s at the best level run, by threads
+
+// These workloads compare libraries, so by default gyro runs at its best level only
+// (R1S and G1 compare the levels); --simd asks for others.
+std::vector<SimdLevel> ray_levels(const Options& o) {
+  return o.levels.empty() ? std::vector<SimdLevel>{detected_simd_level()} : levels_to_run(o);
+}
+
+GyroRates run_gyro_mesh(const Options& o, const MeshData& mesh, const RayCase& c) {
+  GyroRates rates;
+  TriangleMesh tm;
+  const auto start = std::chrono::steady_clock::now();
+  const Status st = TriangleMesh::create(mesh, tm);
+  const double build_ms = ms_since(start);
+  if (st != Status::ok) {
+    std::printf("# gyro TriangleMesh not available yet (%s: %s)\n", status_name(st), last_error());
+    return rates;
+  }
+  const BvhStats stats = tm.stats();
+  std::printf("# %s gyro BVH: %zu nodes, %zu leaves, depth %zu, %zu bytes (%.2f per triangle), SAH cost %.2f\n",
+              c.workload, stats.nodes, stats.leaves, stats.max_depth, stats.bytes,
+              double(stats.bytes) / double(mesh.triangle_count()), stats.sah_cost);
+  const std::size_t n = c.rays.size();
+  const std::vector<float> tmax = tmax_column(c, n);
+  testing::HitSet hits(n);
+  for (SimdLevel level : ray_levels(o)) {
+    set_simd_level(level);
+    for (uint32_t threads : threads_to_run(o)) {
+      set_thread_count(threads);
+      Status qs = Status::ok;
+      const double ms =
+          median_ms(o.reps, [&] { qs = raycast_closest(tm, view_with_tmax(c.rays, tmax), n, hits.out(false)); });
+      if (qs != Status::ok) {
+        std::printf("# gyro raycast_closest failed (%s: %s)\n", status_name(qs), last_error());
+        continue;
+      }
+      const Score s = score(hits.t.data(), n, c.tmax, c.ref);
+      rates[threads] = emit(c,
+                            {"gyro", "closest_hit_bvh", simd_level_name(level), threads, build_ms, stats.bytes,
+                             mesh.triangle_count(), ms, o.reps},
+                            s, "bytes_per_triangle");
+    }
+  }
+  set_simd_level(SimdLevel::automatic);
+  set_thread_count(0);
+  return rates;
+}
+
+GyroRates run_gyro_spheres_subsample(const Options& o, const testing::SphereSet& spheres, const RayCase& c) {
+  GyroRates rates;
+  const RayCase sub = [&] {
+    RayCase s = c;
+    for (auto* col : {&s.rays.ox, &s.rays.oy, &s.rays.oz, &s.rays.dx, &s.rays.dy, &s.rays.dz})
+      col->resize(s.ref.size());
+    return s;
+  }();
+  const std::size_t n = sub.rays.size();
+  const std::vector<float> tmax = tmax_column(sub, n);
+  testing::HitSet hits(n);
+  for (SimdLevel level : ray_levels(o)) {
+    set_simd_level(level);
+    for (uint32_t threads : threads_to_run(o)) {
+      set_thread_count(threads);
+      const double ms = median_ms(o.reps, [&] {
+        raycast_spheres_closest(view_with_tmax(sub.rays, tmax), n, spheres.view(), spheres.size(), hits.out(false));
+      });
+      const Score s = score(hits.t.data(), n, sub.tmax, sub.ref);
+      rates[threads] = emit(
+          sub, {"gyro", "brute_force_subsample", simd_level_name(level), threads, 0.0, 0, spheres.size(), ms, o.reps},
+          s, "bytes_per_sphere");
+    }
+  }
+  set_simd_level(SimdLevel::automatic);
+  set_thread_count(0);
+  return rates;
+}
+
+// ---------------------------------------------------------------- peers
+
+enum class Geometry { triangles, spheres };
+
+void run_embree(const Options& o, Geometry g, const MeshData* mesh, const testing::SphereSet* spheres, const RayCase& c,
+                const GyroRates& gyro) {
+  if (!embree_available()) {
+    std::printf("# Embree not built in (libembree-dev missing at configure time)\n");
+    return;
+  }
+  std::printf("# Embree %s, rtcIntersect16 %s, build quality medium (Embree's default)\n", embree_version(),
+              embree_native_ray16() ? "native (AVX-512)" : "emulated");
+  const std::size_t n = c.rays.size();
+  const char* per = g == Geometry::triangles ? "bytes_per_triangle" : "bytes_per_sphere";
+  const std::size_t prims = g == Geometry::triangles ? mesh->triangle_count() : spheres->size();
+  RayResults r;
+  for (uint32_t threads : threads_to_run(o)) {
+    for (bool robust : {false, true}) {
+      if (robust && g == Geometry::spheres) continue;  // the flag only changes the triangle test
+      PeerBuild b;
+      const auto scene = g == Geometry::triangles ? EmbreeScene::triangles(*mesh, robust, threads, b)
+                                                  : EmbreeScene::spheres(*spheres, threads, b);
+      if (!scene) {
+        std::printf("# Embree scene build failed\n");
+        return;
+      }
+      for (EmbreeMethod m : {EmbreeMethod::intersect1, EmbreeMethod::intersect16}) {
+        std::string name = m == EmbreeMethod::intersect1 ? "rtcIntersect1" : "rtcIntersect16";
+        if (robust) name += "+robust";
+        if (g == Geometry::spheres) name += " sphere_point";
+        const double ms = median_ms(o.reps, [&] { scene->trace(c.rays, n, c.tmax, m, threads, r); });
+        const auto it = gyro.find(threads);
+        emit(c, {"embree", name, "auto", threads, b.ms, b.bytes, prims, ms, o.reps},
+             score(r.t.data(), n, c.tmax, c.ref), per, it == gyro.end() ? 0.0 : it->second);
+      }
+    }
+  }
+}
+
+void run_bullet(const Options& o, Geometry g, const MeshData* mesh, const testing::SphereSet* spheres, const RayCase& c,
+                const GyroRates& gyro) {
+  if (!bullet_available()) {
+    std::printf("# Bullet not built in (libbullet-dev missing at configure time)\n");
+    return;
+  }
+  const auto ts = threads_to_run(o);
+  if (std::find(ts.begin(), ts.end(), 1u) == ts.end()) {
+    std::printf("# Bullet runs on one thread only (rayTest is not thread-safe): skipped\n");
+    return;
+  }
+  const RayCase sub = subsample(c, bullet_rays());
+  const std::size_t n = sub.rays.size();
+  PeerBuild b;
+  const auto world =
+      g == Geometry::triangles ? BulletRayWorld::triangles(*mesh, b) : BulletRayWorld::spheres(*spheres, b);
+  if (!world) return;
+  RayResults r;
+  const int reps = std::max(1, std::min(o.reps, 3));
+  const double ms = median_ms(reps, [&] { world->trace(sub.rays, n, sub.tmax, r); });
+  const auto it = gyro.find(1);
+  const char* method = g == Geometry::triangles ? "rayTest btBvhTriangleMeshShape" : "rayTest btSphereShape";
+  emit(sub,
+       {"bullet", method, "scalar", 1, b.ms, b.bytes,
+        g == Geometry::triangles ? mesh->triangle_count() : spheres->size(), ms, reps},
+       score(r.t.data(), n, sub.tmax, sub.ref), g == Geometry::triangles ? "bytes_per_triangle" : "bytes_per_sphere",
+       it == gyro.end() ? 0.0 : it->second);
+  if (ts.size() > 1) std::printf("# Bullet: 1 thread only (rayTest is not thread-safe)\n");
+}
+
+void print_reference(const RayCase& c, double ms, const char* expected) {
+  std::size_t hits = 0;
+  double sum = 0;
+  for (double t : c.ref)
+    if (t <= double(c.tmax)) ++hits, sum += double(float(t));
+  std::printf("# %s: %zu rays, tmax %g; binary64 reference on %zu rays (%.0f ms): %zu hits, sum t %.2f%s%s\n",
+              c.workload, c.rays.size(), double(c.tmax), c.ref.size(), ms, hits, sum,
+              expected[0] ? "; BENCHMARKS.md: " : "", expected);
+}
+
+void run_terrain(const Options& o, RayCase c, const char* expected) {
+  const MeshData mesh = testing::r2_mesh();
+  if (testing::mesh_vertices_fnv(mesh) != testing::kR2VerticesFnv ||
+      testing::mesh_indices_fnv(mesh) != testing::kR2IndicesFnv)
+    std::printf("# WARNING: R2 mesh hash mismatch: generator differs from BENCHMARKS.md\n");
+  const auto start = std::chrono::steady_clock::now();
+  c.ref = terrain_reference(mesh, c.rays, c.tmax);
+  print_reference(c, ms_since(start), expected);
+  std::printf("# ratio_vs = this line's throughput / gyro's (best SIMD level, same threads)\n");
+  const GyroRates gyro = run_gyro_mesh(o, mesh, c);
+  if (!o.peers) return;
+  run_embree(o, Geometry::triangles, &mesh, nullptr, c, gyro);
+  run_bullet(o, Geometry::triangles, &mesh, nullptr, c, gyro);
+}
+
+}  // namespace
+
+void run_r1(const Options& o) {
+  const testing::SphereSet spheres = testing::r1_spheres();
+  RayCase c;
+  c.workload = "R1";
+  c.rays = testing::r1_rays();
+  if (c.rays.fnv() != testing::kR1RaysFnv) std::printf("# WARNING: R1 rays hash mismatch\n");
+  const auto start = std::chrono::steady_clock::now();
+  for (const testing::RefHit& h : testing::ref_raycast_spheres(c.rays, kR1ReferenceRays, spheres)) c.ref.push_back(h.t);
+  print_reference(c, ms_since(start), "368,880 hits and sum t 9,564,267.01 over all 1,000,000 rays");
+  std::printf("# ratio_vs = this line's throughput / gyro's (best SIMD level, same threads)\n");
+  const GyroRates gyro = run_gyro_spheres_subsample(o, spheres, c);
+  if (!o.peers) return;
+  run_embree(o, Geometry::spheres, nullptr, &spheres, c, gyro);
+  run_bullet(o, Geometry::spheres, nullptr, &spheres, c, gyro);
+}
+
+void run_r2(const Options& o) {
+  RayCase c;
+  c.workload = "R2";
+  c.rays = testing::r2_rays();
+  if (c.rays.fnv() != testing::kR2RaysFnv) std::printf("# WARNING: R2 rays hash mismatch\n");
+  run_terrain(o, std::move(c), "1,000,000 hits and sum t 39,910,570.77");
+}
+
+void run_lidar(const Options& o) {
+  RayCase c;
+  c.workload = "LIDAR";
+  c.rays = testing::lidar_rays();
+  c.tmax = testing::kLidarTmax;
+  c.ordered = true;
+  run_terrain(o, std::move(c), "");
+}
+
+void run_camera(const Options& o) {
+  RayCase c;
+  c.workload = "CAMERA";
+  c.rays = testing::camera_rays();
+  c.ordered = true;
+  run_terrain(o, std::move(c), "");
+}
+
+}  // namespace gyro::bench
