@@ -19,6 +19,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <type_traits>
 
 #if !defined(GYRO_ARCH_SCALAR)
 #include <xsimd/xsimd.hpp>
@@ -114,8 +115,34 @@ template <class A> struct vfloat_t {
 template <class A> inline vfloat_t<A> select(vmask_t<A> m, vfloat_t<A> a, vfloat_t<A> b) {
   return vfloat_t<A>(xsimd::select(m.m, a.v, b.v));
 }
-template <class A> inline vfloat_t<A> min(vfloat_t<A> a, vfloat_t<A> b) { return select(a < b, a, b); }
-template <class A> inline vfloat_t<A> max(vfloat_t<A> a, vfloat_t<A> b) { return select(a > b, a, b); }
+// x86's MINPS/MAXPS are exactly `a < b ? a : b` and `a > b ? a : b`: when either operand
+// is NaN, or both are zeros of any sign, they return the second operand. One instruction
+// instead of a compare and a blend, with the same bits (lanes_test checks every pair of
+// special values). NEON's fmin/fmax return NaN instead, so NEON keeps the select.
+template <class A> inline vfloat_t<A> min(vfloat_t<A> a, vfloat_t<A> b) {
+#if defined(GYRO_ARCH_AVX512)
+  if constexpr (std::is_same_v<A, xsimd::avx512f>) return vfloat_t<A>(xsimd::batch<float, A>(_mm512_min_ps(a.v, b.v)));
+#endif
+#if defined(GYRO_ARCH_AVX2) || defined(GYRO_ARCH_AVX512)
+  if constexpr (std::is_same_v<A, xsimd::avx2>) return vfloat_t<A>(xsimd::batch<float, A>(_mm256_min_ps(a.v, b.v)));
+#endif
+#if !defined(GYRO_ARCH_NEON)
+  if constexpr (xsimd::batch<float, A>::size == 4) return vfloat_t<A>(xsimd::batch<float, A>(_mm_min_ps(a.v, b.v)));
+#endif
+  return select(a < b, a, b);
+}
+template <class A> inline vfloat_t<A> max(vfloat_t<A> a, vfloat_t<A> b) {
+#if defined(GYRO_ARCH_AVX512)
+  if constexpr (std::is_same_v<A, xsimd::avx512f>) return vfloat_t<A>(xsimd::batch<float, A>(_mm512_max_ps(a.v, b.v)));
+#endif
+#if defined(GYRO_ARCH_AVX2) || defined(GYRO_ARCH_AVX512)
+  if constexpr (std::is_same_v<A, xsimd::avx2>) return vfloat_t<A>(xsimd::batch<float, A>(_mm256_max_ps(a.v, b.v)));
+#endif
+#if !defined(GYRO_ARCH_NEON)
+  if constexpr (xsimd::batch<float, A>::size == 4) return vfloat_t<A>(xsimd::batch<float, A>(_mm_max_ps(a.v, b.v)));
+#endif
+  return select(a > b, a, b);
+}
 template <class A> inline vfloat_t<A> sqrt(vfloat_t<A> a) {
 #if defined(GYRO_ARCH_NEON)
   return vfloat_t<A>(xsimd::batch<float, A>(vsqrtq_f32(a.v)));  // xsimd's neon64 float sqrt is an estimate
@@ -154,12 +181,28 @@ using vmask = vmask_t<Arch>;
 static_assert(lane_traits<vfloat>::width == GYRO_ARCH_WIDTH, "lane width does not match the level");
 
 // Quad: a lane of exactly 4 floats at every SIMD level (the float loop at the scalar level).
+// The widest 128-bit instruction set of the level: SSE4.1's blendvps makes a select one
+// instruction instead of three (and, andnot, or) inside the AVX2 and AVX-512 kernels.
 #if defined(GYRO_ARCH_NEON)
 using Quad = vfloat_t<xsimd::neon64>;
-#else
+#elif defined(GYRO_ARCH_SSE2)
 using Quad = vfloat_t<xsimd::sse2>;
+#else
+using Quad = vfloat_t<xsimd::sse4_2>;
 #endif
 static_assert(lane_traits<Quad>::width == 4, "Quad must be 4 wide");
+
+/// Bit k set when lane k of a Quad mask is true (one movemask on x86, no branches).
+inline unsigned lane_bits(vmask_t<Quad::batch_f::arch_type> m) {
+#if defined(GYRO_ARCH_NEON)
+  const uint32x4_t weights = {1u, 2u, 4u, 8u};
+  const uint32x4_t lanes = m.m;
+  return vaddvq_u32(vandq_u32(lanes, weights));
+#else
+  const __m128 lanes = m.m;
+  return unsigned(_mm_movemask_ps(lanes));
+#endif
+}
 
 using Wide = vfloat;
 #else
@@ -206,6 +249,10 @@ inline Quad sqrt(Quad a) { return Quad::map([&](int k) { return sqrt(a.v[k]); })
 inline Quad abs(Quad a) { return Quad::map([&](int k) { return abs(a.v[k]); }); }
 inline Quad copysign(Quad a, Quad b) { return Quad::map([&](int k) { return copysign(a.v[k], b.v[k]); }); }
 inline bool any(QuadMask m) { return (m.m[0] || m.m[1]) || (m.m[2] || m.m[3]); }
+/// Bit k set when lane k is true.
+inline unsigned lane_bits(QuadMask m) {
+  return unsigned(m.m[0]) | unsigned(m.m[1]) << 1 | unsigned(m.m[2]) << 2 | unsigned(m.m[3]) << 3;
+}
 inline bool all(QuadMask m) { return (m.m[0] && m.m[1]) && (m.m[2] && m.m[3]); }
 
 template <> struct lane_traits<Quad> {

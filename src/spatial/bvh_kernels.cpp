@@ -75,16 +75,15 @@ inline void trace(const Bvh4& bvh, const float o[3], const float d[3], float tmi
       const BvhLeaf4& leaf = bvh.leaves[e.code & ~kLeafBit];
       const auto row = [&](int k) { return load<Quad>(leaf.corner[k]); };
       const TriangleL<Quad> tri{{row(0), row(1), row(2)}, {row(3), row(4), row(5)}, {row(6), row(7), row(8)}};
+      const Quad t = leaf_t(wr, tri, qtmin, qtmax);
+      if (!any(t < Quad(kInf))) continue;  // most leaves a ray enters it does not hit
       float ts[4];
-      store(ts, leaf_t(wr, tri, qtmin, qtmax));
+      store(ts, t);
       for (int k = 0; k < 4; ++k) {
-        if (ts[k] == kInf) continue;
         if (ts[k] < best_t || (ts[k] == best_t && leaf.triangle[k] < best_id)) best_t = ts[k], best_id = leaf.triangle[k];
       }
-      if (best_id != kNoTriangle) {
-        if constexpr (AnyHit) break;
-        limit = best_t + best_t * kBestSlack;
-      }
+      if constexpr (AnyHit) break;
+      limit = best_t + best_t * kBestSlack;
       continue;
     }
     const BvhNode4& node = bvh.nodes[e.code];
@@ -92,32 +91,47 @@ inline void trace(const Bvh4& bvh, const float o[3], const float d[3], float tmi
     const Quad qlimit(limit);
     const Quad tn = max(slab(near_row[0], 0), max(slab(near_row[1], 1), max(slab(near_row[2], 2), qtmin)));
     const Quad tf = min(slab(far_row[0], 0), min(slab(far_row[1], 1), min(slab(far_row[2], 2), qlimit)));
+    const auto entered = tn <= tf + abs(tf) * Quad(kSlabSlack);
+    const unsigned mask = lane_bits(entered);
+    if (mask == 0) continue;
     float nears[4];
-    store(nears, select(tn <= tf + abs(tf) * Quad(kSlabSlack), tn, Quad(kInf)));
-    // Push the entered children farthest first, so the nearest is visited next (ties keep
-    // the slot order: the order is a function of the values only). Each is prefetched as
-    // it is pushed: traversal is bound by memory latency, not arithmetic.
-    Entry hit[4];
-    int n = 0;
-    for (int k = 0; k < 4; ++k) {
-      if (nears[k] == kInf) continue;
-      const uint32_t c = node.child[k];
-      if (c & kLeafBit) {
-        const char* p = reinterpret_cast<const char*>(&bvh.leaves[c & ~kLeafBit]);
-        __builtin_prefetch(p), __builtin_prefetch(p + 64), __builtin_prefetch(p + 128);
-      } else {
-        const char* p = reinterpret_cast<const char*>(&bvh.nodes[c]);
-        __builtin_prefetch(p), __builtin_prefetch(p + 64);
-      }
-      int j = n++;
-      while (j > 0 && hit[j - 1].near > nears[k]) hit[j] = hit[j - 1], --j;
-      hit[j] = {c, nears[k]};
-    }
-    if (n == 1) {  // the common case: descend without touching the stack
-      e = hit[0];
+    store(nears, tn);
+    if ((mask & (mask - 1)) == 0) {  // one child entered, the common case: descend at once
+      const int k = __builtin_ctz(mask);
+      e = {node.child[k], nears[k]};
       goto visit;
     }
-    while (n > 0) stack[sp++] = hit[--n];
+    const unsigned rest = mask & (mask - 1);
+    if ((rest & (rest - 1)) == 0) {  // two: the nearer next (ties: the lower slot), the other pushed
+      const int k0 = __builtin_ctz(mask), k1 = __builtin_ctz(rest);
+      const bool swap = nears[k1] < nears[k0];
+      const int kn = swap ? k1 : k0, kf = swap ? k0 : k1;
+      const uint32_t c = node.child[kf];
+      __builtin_prefetch(c & kLeafBit ? static_cast<const void*>(&bvh.leaves[c & ~kLeafBit]) : &bvh.nodes[c]);
+      stack[sp++] = {c, nears[kf]};
+      e = {node.child[kn], nears[kn]};
+      goto visit;
+    }
+    // Several: visit the nearest next and push the others farthest first (ties keep the
+    // slot order, so the order is a function of the values only). Pushed children are
+    // prefetched: by the time one is popped its lines are on their way.
+    Entry hit[4];
+    int n = 0;
+    for (unsigned m = mask; m != 0; m &= m - 1) {
+      const int k = __builtin_ctz(m);
+      int j = n++;
+      while (j > 0 && hit[j - 1].near > nears[k]) hit[j] = hit[j - 1], --j;
+      hit[j] = {node.child[k], nears[k]};
+    }
+    for (int j = n - 1; j > 0; --j) {
+      const uint32_t c = hit[j].code;
+      const char* p = c & kLeafBit ? reinterpret_cast<const char*>(&bvh.leaves[c & ~kLeafBit])
+                                   : reinterpret_cast<const char*>(&bvh.nodes[c]);
+      __builtin_prefetch(p), __builtin_prefetch(p + 64);
+      stack[sp++] = hit[j];
+    }
+    e = hit[0];
+    goto visit;
   }
   out_t = best_t;
   out_id = best_id;

@@ -6,6 +6,12 @@
 #include "gyro/math.hpp"
 #include "math/trig_batch.hpp"
 #include "random_shapes.hpp"
+#if defined(GYRO_HAS_SPATIAL)
+#include "gyro/camera.hpp"
+#include "gyro/frustum.hpp"
+#include "gyro/triangle_mesh.hpp"
+#include "spatial/bvh.hpp"
+#endif
 #include "workloads.hpp"
 
 #include <bit>
@@ -188,6 +194,101 @@ uint64_t scene_geometry_batch() {
   return h.digest();
 }
 
+
+#if defined(GYRO_HAS_SPATIAL)
+// A terrain with seeded heights (no libm: inputs must be the same bits on every CPU) plus
+// a soup of random triangles above it: the BVH's bytes (the build must be deterministic
+// too) and closest and any hits of rays of every kind, with normals and barycentrics.
+uint64_t scene_mesh_bvh() {
+  static const MeshData mesh = [] {
+    MeshData m;
+    SplitMix64 rng(31);
+    const int n = 96;
+    for (int j = 0; j <= n; ++j)
+      for (int i = 0; i <= n; ++i) m.add_vertex({float(i) * 0.5f, float(2.0 * rng.u()), float(j) * 0.5f});
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        const uint32_t a = uint32_t(j * (n + 1) + i), b = a + 1, c = a + uint32_t(n + 1), d = c + 1;
+        m.add_triangle(a, c, b), m.add_triangle(b, c, d);
+      }
+    for (int t = 0; t < 3000; ++t) {
+      const vec3 c{float(48 * rng.u()), float(3 + 10 * rng.u()), float(48 * rng.u())};
+      const uint32_t v = uint32_t(m.vertex_count());
+      for (int k = 0; k < 3; ++k) m.add_vertex(c + vec3{float(rng.u() - 0.5), float(rng.u() - 0.5), float(rng.u() - 0.5)});
+      m.add_triangle(v, v + 1, v + 2);
+    }
+    return m;
+  }();
+  static const RaySet rays = [] {
+    RaySet r;
+    SplitMix64 rng(32);
+    for (int i = 0; i < 4000; ++i) {
+      const float o[3] = {float(60 * rng.u() - 6), float(20 * rng.u()), float(60 * rng.u() - 6)};
+      float d[3] = {float(rng.u() - 0.5), float(rng.u() - 0.5), float(rng.u() - 0.5)};
+      if (i % 7 == 0) d[0] = 0.0f, d[2] = 0.0f;  // straight down: zero components
+      r.push(o[0], o[1], o[2], d[0], d[1], d[2]);
+    }
+    return r;
+  }();
+  detail::StateHasher h;
+  const detail::Bvh4 bvh = detail::build_bvh4(mesh);
+  for (const auto& node : bvh.nodes) {
+    for (const auto& row : node.bounds) h.add_floats(std::span<const float>(row, 4));
+    h.add_u32s(std::span<const uint32_t>(node.child, 4));
+  }
+  for (const auto& leaf : bvh.leaves) h.add_u32s(std::span<const uint32_t>(leaf.triangle, 4));
+  TriangleMesh tm;
+  if (TriangleMesh::create(mesh, tm) != Status::ok) return 0;
+  HitSet hits(rays.size());
+  std::vector<float> u(rays.size()), v(rays.size());
+  HitsOut o = hits.out();
+  o.u = u.data(), o.v = v.data();
+  if (raycast_closest(tm, rays.view(), rays.size(), o) != Status::ok) return 0;
+  h.add_floats(hits.t), h.add_floats(hits.nx), h.add_floats(hits.ny), h.add_floats(hits.nz), h.add_floats(u),
+      h.add_floats(v);
+  for (int32_t k : hits.primitive) h.add_u32(uint32_t(k));
+  if (raycast_any(tm, rays.view(), rays.size(), hits.out(false)) != Status::ok) return 0;
+  h.add_floats(hits.t);
+  for (int32_t k : hits.primitive) h.add_u32(uint32_t(k));
+  return h.digest();
+}
+
+// A camera's matrices, picking rays and frustum, and batch culling of random spheres,
+// AABBs and OBBs around it.
+uint64_t scene_camera_frustum() {
+  detail::StateHasher h;
+  Camera cam = perspective_camera(1.1f, 1.5f, 0.25f, 80.0f);
+  set_look_at(cam, {3.0f, 4.0f, -12.0f}, {1.0f, 0.5f, 2.0f}, {0.0f, 1.0f, 0.0f});
+  const mat4 vp = view_projection_matrix(cam);
+  h.add_floats(std::span<const float>(&vp.m[0][0], 16));
+  for (int y = 0; y <= 8; ++y)
+    for (int x = 0; x <= 8; ++x) {
+      const Ray r = picking_ray(cam, {float(x) * 160.0f, float(y) * 90.0f}, {1280.0f, 720.0f});
+      const float f[6] = {r.origin.x, r.origin.y, r.origin.z, r.direction.x, r.direction.y, r.direction.z};
+      h.add_floats(std::span<const float>(f, 6));
+    }
+  const Frustum fr = frustum(cam);
+  for (const Plane& p : fr.planes) {
+    const float f[4] = {p.normal.x, p.normal.y, p.normal.z, p.distance};
+    h.add_floats(std::span<const float>(f, 4));
+  }
+  static const std::vector<RandomShapes> shapes = [] {
+    std::vector<RandomShapes> all;
+    SplitMix64 rng(33);
+    for (ShapeType t : {ShapeType::sphere, ShapeType::aabb, ShapeType::obb}) all.push_back(random_shapes(t, 5003, rng, 60.0f));
+    return all;
+  }();
+  std::vector<uint32_t> visible(5003);
+  if (frustum_cull(fr, shapes[0].view().spheres, visible.size(), visible.data()) != Status::ok) return 0;
+  h.add_u32s(visible);
+  if (frustum_cull(fr, shapes[1].view().aabbs, visible.size(), visible.data()) != Status::ok) return 0;
+  h.add_u32s(visible);
+  if (frustum_cull(fr, shapes[2].view().obbs, visible.size(), visible.data()) != Status::ok) return 0;
+  h.add_u32s(visible);
+  return h.digest();
+}
+#endif
+
 const DetScene kScenes[] = {
     {"trig", scene_trig, 0x69125c38406c536bull},
     {"r1s_2k", scene_r1s_2k, 0x8ef0b58be8aab651ull},
@@ -195,6 +296,10 @@ const DetScene kScenes[] = {
     {"math_library", scene_math_library, 0x3de9709813336bbcull},
     {"n1_overlap", scene_n1_overlap, 0xad908dedd18ef994ull},
     {"geometry_batch", scene_geometry_batch, 0x1d2f55ce85f87c4full},
+#if defined(GYRO_HAS_SPATIAL)
+    {"mesh_bvh", scene_mesh_bvh, 0xc14979a18bf9ec7eull},
+    {"camera_frustum", scene_camera_frustum, 0x246ff5bf8a6a766cull},
+#endif
 };
 
 }  // namespace
