@@ -265,6 +265,76 @@ template <> struct lane_traits<Quad> {
 inline void store(float* p, Quad v) { lane_traits<Quad>::store(p, v); }
 #endif
 
+// ---------------------------------------------------------------- Oct: exactly 8 lanes
+// One AVX register at the AVX levels; two Quads, element by element, everywhere else (the
+// BVH's eight-child nodes). Every operation is elementwise, so each level gives the bits of
+// the float lane.
+template <class Q> struct PairMask {
+  using M = decltype(Q(0.0f) < Q(0.0f));
+  M lo, hi;
+  friend PairMask operator&&(PairMask a, PairMask b) { return {a.lo && b.lo, a.hi && b.hi}; }
+  friend PairMask operator||(PairMask a, PairMask b) { return {a.lo || b.lo, a.hi || b.hi}; }
+  friend PairMask operator!(PairMask a) { return {!a.lo, !a.hi}; }
+};
+
+template <class Q> struct Pair {
+  using Mask = PairMask<Q>;
+  Q lo, hi;
+  Pair() = default;
+  Pair(float s) : lo(s), hi(s) {}  // NOLINT: broadcast, as vfloat
+  Pair(Q l, Q h) : lo(l), hi(h) {}
+  friend Pair operator+(Pair a, Pair b) { return {a.lo + b.lo, a.hi + b.hi}; }
+  friend Pair operator-(Pair a, Pair b) { return {a.lo - b.lo, a.hi - b.hi}; }
+  friend Pair operator*(Pair a, Pair b) { return {a.lo * b.lo, a.hi * b.hi}; }
+  friend Pair operator/(Pair a, Pair b) { return {a.lo / b.lo, a.hi / b.hi}; }
+  friend Pair operator-(Pair a) { return {-a.lo, -a.hi}; }
+  Pair& operator+=(Pair b) { return *this = *this + b; }
+  Pair& operator-=(Pair b) { return *this = *this - b; }
+  Pair& operator*=(Pair b) { return *this = *this * b; }
+  Pair& operator/=(Pair b) { return *this = *this / b; }
+  friend Mask operator<(Pair a, Pair b) { return {a.lo < b.lo, a.hi < b.hi}; }
+  friend Mask operator<=(Pair a, Pair b) { return {a.lo <= b.lo, a.hi <= b.hi}; }
+  friend Mask operator>(Pair a, Pair b) { return {a.lo > b.lo, a.hi > b.hi}; }
+  friend Mask operator>=(Pair a, Pair b) { return {a.lo >= b.lo, a.hi >= b.hi}; }
+  friend Mask operator==(Pair a, Pair b) { return {a.lo == b.lo, a.hi == b.hi}; }
+  friend Mask operator!=(Pair a, Pair b) { return {a.lo != b.lo, a.hi != b.hi}; }
+};
+
+template <class Q> inline Pair<Q> select(PairMask<Q> m, Pair<Q> a, Pair<Q> b) {
+  return {select(m.lo, a.lo, b.lo), select(m.hi, a.hi, b.hi)};
+}
+template <class Q> inline Pair<Q> min(Pair<Q> a, Pair<Q> b) { return {min(a.lo, b.lo), min(a.hi, b.hi)}; }
+template <class Q> inline Pair<Q> max(Pair<Q> a, Pair<Q> b) { return {max(a.lo, b.lo), max(a.hi, b.hi)}; }
+template <class Q> inline Pair<Q> sqrt(Pair<Q> a) { return {sqrt(a.lo), sqrt(a.hi)}; }
+template <class Q> inline Pair<Q> abs(Pair<Q> a) { return {abs(a.lo), abs(a.hi)}; }
+template <class Q> inline Pair<Q> copysign(Pair<Q> a, Pair<Q> b) { return {copysign(a.lo, b.lo), copysign(a.hi, b.hi)}; }
+template <class Q> inline bool any(PairMask<Q> m) { return any(m.lo) || any(m.hi); }
+template <class Q> inline bool all(PairMask<Q> m) { return all(m.lo) && all(m.hi); }
+template <class Q> inline unsigned lane_bits(PairMask<Q> m) { return lane_bits(m.lo) | lane_bits(m.hi) << 4; }
+
+template <class Q> struct lane_traits<Pair<Q>> {
+  static constexpr std::size_t width = 8;
+  static Pair<Q> load(const float* p) { return {lane_traits<Q>::load(p), lane_traits<Q>::load(p + 4)}; }
+  static void store(float* p, Pair<Q> v) { lane_traits<Q>::store(p, v.lo), lane_traits<Q>::store(p + 4, v.hi); }
+  static void store_bits(uint32_t* p, Pair<Q> v) {
+    lane_traits<Q>::store_bits(p, v.lo), lane_traits<Q>::store_bits(p + 4, v.hi);
+  }
+  static Pair<Q> from_bits(uint32_t bits) { return {lane_traits<Q>::from_bits(bits), lane_traits<Q>::from_bits(bits)}; }
+};
+template <class Q> inline void store(float* p, Pair<Q> v) { lane_traits<Pair<Q>>::store(p, v); }
+
+#if defined(GYRO_ARCH_AVX2) || defined(GYRO_ARCH_AVX512)
+using Oct = vfloat_t<xsimd::avx2>;
+/// Bit k set when lane k of an Oct mask is true.
+inline unsigned lane_bits(vmask_t<xsimd::avx2> m) {
+  const __m256 lanes = m.m;
+  return unsigned(_mm256_movemask_ps(lanes));
+}
+#else
+using Oct = Pair<Quad>;
+#endif
+static_assert(lane_traits<Oct>::width == 8, "Oct must be 8 wide");
+
 // ---------------------------------------------------------------- uniform helpers
 template <class L> inline constexpr std::size_t width_v = lane_traits<L>::width;
 template <class L> inline L load(const float* p) { return lane_traits<L>::load(p); }

@@ -20,5 +20,7 @@ using lanes_probe_fn = void(const LaneProbeArgs&, std::size_t begin, std::size_t
 GYRO_KERNEL(lanes_probe, lanes_probe_fn)
 /// The same operations on Quad, the fixed 4-wide lane (four floats at the scalar level).
 GYRO_KERNEL(quad_probe, lanes_probe_fn)
+/// The same on Oct, the fixed 8-wide lane (one AVX register, or two Quads).
+GYRO_KERNEL(oct_probe, lanes_probe_fn)
 
 }  // namespace gyro

@@ -21,6 +21,12 @@ void lanes_probe(const LaneProbeArgs& p, std::size_t begin, std::size_t end) {
   for_lanes(begin, end, [&](auto tag, std::size_t i) { probe_at<decltype(tag)>(p, i); });
 }
 
+void oct_probe(const LaneProbeArgs& p, std::size_t begin, std::size_t end) {
+  std::size_t i = begin;
+  for (; i + 8 <= end; i += 8) probe_at<Oct>(p, i);
+  for (; i < end; ++i) probe_at<float>(p, i);
+}
+
 void quad_probe(const LaneProbeArgs& p, std::size_t begin, std::size_t end) {
   std::size_t i = begin;
   for (; i + 4 <= end; i += 4) probe_at<Quad>(p, i);

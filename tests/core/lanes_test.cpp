@@ -22,26 +22,26 @@ TEST(Lanes, EveryOperationMatchesScalarOnSpecialValues) {
   for (float x : specials)
     for (float y : specials) a.push_back(x), b.push_back(y);
   const std::size_t n = a.size();
-  auto run = [&](SimdLevel level, bool quad) {
+  auto run = [&](SimdLevel level, int fixed) {
     std::vector<std::vector<float>> out(kLaneProbeOps, std::vector<float>(n));
     LaneProbeArgs args{a.data(), b.data(), {}};
     for (int k = 0; k < kLaneProbeOps; ++k) args.out[k] = out[k].data();
-    (quad ? detail::quad_probe_for(level) : detail::lanes_probe_for(level))(args, 0, n);
+    (fixed == 4 ? detail::quad_probe_for(level) : fixed == 8 ? detail::oct_probe_for(level) : detail::lanes_probe_for(level))(args, 0, n);
     return out;
   };
-  const auto ref = run(SimdLevel::scalar, false);
+  const auto ref = run(SimdLevel::scalar, 0);
   int levels = 0;
-  // Every level's wide lane, and every level's Quad (the scalar level's included).
+  // Every level's wide lane, and every level's Quad and Oct (the scalar level's included).
   for (uint32_t v = 1; v <= 5; ++v) {
     const SimdLevel level = SimdLevel(v);
     if (!simd_level_available(level)) continue;
     levels += v > 1;
-    for (bool quad : {false, true}) {
-      const auto got = run(level, quad);
+    for (int fixed : {0, 4, 8}) {
+      const auto got = run(level, fixed);
       for (int k = 0; k < kLaneProbeOps; ++k)
         for (std::size_t i = 0; i < n; ++i)
           ASSERT_EQ(detail::canonical_float_bits(got[k][i]), detail::canonical_float_bits(ref[k][i]))
-              << "op " << k << " at " << simd_level_name(level) << (quad ? " (Quad)" : "") << " a=" << a[i]
+              << "op " << k << " at " << simd_level_name(level) << (fixed ? (fixed == 4 ? " (Quad)" : " (Oct)") : "") << " a=" << a[i]
               << " b=" << b[i];
     }
   }
