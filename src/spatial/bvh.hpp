@@ -8,6 +8,9 @@
 // Leaf blocks hold up to four triangles as structure of arrays (corner a, b, c coordinates,
 // one float per triangle) in leaf order, with each triangle's index in the input mesh;
 // unused lanes have NaN corners (no ray hits them) and index kNoTriangle.
+//
+// The same builder also makes a BVH over arbitrary boxes (BoxBvh4: the scene's top level
+// over its models), with the same nodes and leaf blocks of up to four item indices.
 #pragma once
 
 #include "gyro/mesh.hpp"
@@ -22,6 +25,7 @@ namespace gyro::detail {
 inline constexpr uint32_t kLeafBit = 0x80000000u;
 inline constexpr uint32_t kEmptyChild = 0xFFFFFFFFu;
 inline constexpr uint32_t kNoTriangle = 0xFFFFFFFFu;
+inline constexpr uint32_t kNoItem = 0xFFFFFFFFu;
 /// Written as the hit index of a ray the query cannot answer (-2 as int32_t).
 inline constexpr uint32_t kInvalidRay = 0xFFFFFFFEu;
 /// The build caps the binary depth so that a traversal stack of kBvhStackSize entries always
@@ -50,8 +54,31 @@ struct Bvh4 {
   BvhStats stats;
 };
 
+/// A leaf block of a BVH over boxes: up to four item indices, kNoItem in unused lanes.
+struct alignas(16) BvhItems4 {
+  uint32_t item[4];
+};
+
+/// A BVH over boxes: nodes as Bvh4's, leaves holding item indices (the input order).
+struct BoxBvh4 {
+  std::vector<BvhNode4> nodes;  ///< nodes[0] is the root (all slots empty when there are no boxes)
+  std::vector<BvhItems4> leaves;
+  AABB bounds;
+  BvhStats stats;
+};
+
+/// An item's box for build_box_bvh4: finite corners with lo <= hi on every axis.
+struct BvhBox {
+  float lo[3];
+  float hi[3];
+};
+
 /// Builds the BVH of a valid mesh (binned SAH over triangle centroids, then collapsed from
 /// binary to 4-wide). Deterministic: depends only on the mesh's values.
 Bvh4 build_bvh4(const MeshData& mesh);
+
+/// Builds a BVH over boxes[0..count) with the same binned SAH and collapse (a box's
+/// centroid is the middle of its corners). Deterministic: depends only on the values.
+BoxBvh4 build_box_bvh4(const BvhBox* boxes, std::size_t count);
 
 }  // namespace gyro::detail

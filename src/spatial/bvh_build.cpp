@@ -9,6 +9,10 @@
 //
 // The SAH cost counts 4-wide leaf blocks, not triangles (a block of 1 to 4 triangles costs
 // one lane test), so a node of at most 4 triangles is always a leaf.
+//
+// One builder serves two outputs: a mesh's BVH (leaves hold the triangles' corners) and a
+// BVH over arbitrary boxes (leaves hold item indices; the scene's top level). Only the
+// primitive boxes and the leaf writer differ, so both get the same tree for the same boxes.
 #include "spatial/bvh.hpp"
 
 #include <algorithm>
@@ -44,31 +48,36 @@ struct BinaryNode {
   uint32_t first = 0, count = 0;  // leaf when count > 0
 };
 
+// A node whose four slots are empty: bounds (+inf, -inf), which no slab test enters.
+BvhNode4 empty_node() {
+  BvhNode4 n;
+  for (int k = 0; k < 4; ++k) {
+    for (int a = 0; a < 3; ++a) n.bounds[2 * a][k] = kInf, n.bounds[2 * a + 1][k] = -kInf;
+    n.child[k] = kEmptyChild;
+  }
+  return n;
+}
+
 double blocks(uint32_t n) { return double((n + kLeafSize - 1) / kLeafSize); }
 
 class Builder {
  public:
-  explicit Builder(const MeshData& mesh) : mesh_(mesh) {
-    const std::size_t n = mesh.triangle_count();
-    prim_.resize(n);
+  // prim[i] is primitive i's box; the leaf writer receives primitive indices.
+  explicit Builder(std::vector<Box> prims) : prim_(std::move(prims)) {
+    const std::size_t n = prim_.size();
     centroid_.resize(n);
     order_.resize(n);
     for (std::size_t i = 0; i < n; ++i) {
-      Box b;
-      for (int k = 0; k < 3; ++k) {
-        const uint32_t v = mesh.indices[3 * i + k];
-        const float p[3] = {mesh.x[v], mesh.y[v], mesh.z[v]};
-        b.grow(p);
-      }
-      prim_[i] = b;
+      const Box& b = prim_[i];
       for (int a = 0; a < 3; ++a) centroid_[i][a] = (b.lo[a] + b.hi[a]) * 0.5f;
       order_[i] = uint32_t(i);
     }
   }
 
-  Bvh4 run() {
+  // Out is Bvh4 or BoxBvh4; leaf(out, b) appends binary leaf b's block and returns its code.
+  template <class Out, class Leaf> Out run(Leaf&& leaf) {
     const uint32_t root = build(0, uint32_t(order_.size()), 0);
-    Bvh4 out;
+    Out out;
     out.nodes.reserve(nodes_.size() / 2 + 1);
     out.leaves.reserve(order_.size() / 2 + 1);
     const Box& rb = nodes_[root].box;
@@ -78,22 +87,21 @@ class Builder {
     std::size_t depth = 0;
     if (nodes_[root].count > 0) {
       out.nodes.push_back(empty_node());
-      set_child(out.nodes[0], 0, nodes_[root].box, emit_leaf(out, nodes_[root]));
+      set_child(out.nodes[0], 0, nodes_[root].box, emit_leaf(out, nodes_[root], leaf));
       sah_ += 1.0;
       depth = 1;
     } else {
-      emit(out, root, 1, depth);
+      emit(out, root, 1, depth, leaf);
     }
     out.stats.nodes = out.nodes.size();
     out.stats.leaves = out.leaves.size();
     out.stats.max_depth = depth;
-    out.stats.bytes = out.nodes.size() * sizeof(BvhNode4) + out.leaves.size() * sizeof(BvhLeaf4);
+    out.stats.bytes = out.nodes.size() * sizeof(BvhNode4) + out.leaves.size() * sizeof(out.leaves[0]);
     out.stats.sah_cost = sah_;
     return out;
   }
 
  private:
-  const MeshData& mesh_;
   std::vector<Box> prim_;
   std::vector<std::array<float, 3>> centroid_;
   std::vector<uint32_t> order_;
@@ -187,43 +195,18 @@ class Builder {
     return count / 2;
   }
 
-  static BvhNode4 empty_node() {
-    BvhNode4 n;
-    for (int k = 0; k < 4; ++k) {
-      for (int a = 0; a < 3; ++a) n.bounds[2 * a][k] = kInf, n.bounds[2 * a + 1][k] = -kInf;
-      n.child[k] = kEmptyChild;
-    }
-    return n;
-  }
-
   static void set_child(BvhNode4& n, int k, const Box& b, uint32_t code) {
     for (int a = 0; a < 3; ++a) n.bounds[2 * a][k] = b.lo[a], n.bounds[2 * a + 1][k] = b.hi[a];
     n.child[k] = code;
   }
 
-  uint32_t emit_leaf(Bvh4& out, const BinaryNode& b) {
-    BvhLeaf4 leaf;
-    const float nan = __builtin_nanf("");
-    for (int k = 0; k < 4; ++k) {
-      if (uint32_t(k) < b.count) {
-        const uint32_t t = order_[b.first + k];
-        for (int c = 0; c < 3; ++c) {
-          const uint32_t v = mesh_.indices[3 * std::size_t(t) + c];
-          leaf.corner[3 * c][k] = mesh_.x[v], leaf.corner[3 * c + 1][k] = mesh_.y[v], leaf.corner[3 * c + 2][k] = mesh_.z[v];
-        }
-        leaf.triangle[k] = t;
-      } else {
-        for (auto& row : leaf.corner) row[k] = nan;
-        leaf.triangle[k] = kNoTriangle;
-      }
-    }
+  template <class Out, class Leaf> uint32_t emit_leaf(Out& out, const BinaryNode& b, Leaf& leaf) {
     sah_ += b.box.half_area() / root_area_;
-    out.leaves.push_back(leaf);
-    return kLeafBit | uint32_t(out.leaves.size() - 1);
+    return leaf(out, order_.data() + b.first, b.count);
   }
 
   // Emits the 4-wide node for binary interior node b; returns its index.
-  uint32_t emit(Bvh4& out, uint32_t b, std::size_t depth, std::size_t& max_depth) {
+  template <class Out, class Leaf> uint32_t emit(Out& out, uint32_t b, std::size_t depth, std::size_t& max_depth, Leaf& leaf) {
     max_depth = std::max(max_depth, depth);
     uint32_t kids[4] = {nodes_[b].left, nodes_[b].right};
     int n = 2;
@@ -246,15 +229,74 @@ class Builder {
     sah_ += nodes_[b].box.half_area() / root_area_;
     for (int k = 0; k < n; ++k) {
       const BinaryNode& c = nodes_[kids[k]];
-      const uint32_t code = c.count > 0 ? emit_leaf(out, c) : emit(out, kids[k], depth + 1, max_depth);
+      const uint32_t code = c.count > 0 ? emit_leaf(out, c, leaf) : emit(out, kids[k], depth + 1, max_depth, leaf);
       set_child(out.nodes[index], k, c.box, code);
     }
     return index;
   }
 };
 
+// Packs up to four triangles (their corners, in leaf order) into a block; unused lanes get
+// NaN corners, which no ray hits.
+struct MeshLeaf {
+  const MeshData& mesh;
+  uint32_t operator()(Bvh4& out, const uint32_t* tris, uint32_t count) const {
+    BvhLeaf4 leaf;
+    const float nan = __builtin_nanf("");
+    for (int k = 0; k < 4; ++k) {
+      if (uint32_t(k) < count) {
+        const uint32_t t = tris[k];
+        for (int c = 0; c < 3; ++c) {
+          const uint32_t v = mesh.indices[3 * std::size_t(t) + c];
+          leaf.corner[3 * c][k] = mesh.x[v], leaf.corner[3 * c + 1][k] = mesh.y[v], leaf.corner[3 * c + 2][k] = mesh.z[v];
+        }
+        leaf.triangle[k] = t;
+      } else {
+        for (auto& row : leaf.corner) row[k] = nan;
+        leaf.triangle[k] = kNoTriangle;
+      }
+    }
+    out.leaves.push_back(leaf);
+    return kLeafBit | uint32_t(out.leaves.size() - 1);
+  }
+};
+
+uint32_t box_leaf(BoxBvh4& out, const uint32_t* items, uint32_t count) {
+  BvhItems4 leaf;
+  for (uint32_t k = 0; k < 4; ++k) leaf.item[k] = k < count ? items[k] : kNoItem;
+  out.leaves.push_back(leaf);
+  return kLeafBit | uint32_t(out.leaves.size() - 1);
+}
+
 }  // namespace
 
-Bvh4 build_bvh4(const MeshData& mesh) { return Builder(mesh).run(); }
+Bvh4 build_bvh4(const MeshData& mesh) {
+  const std::size_t n = mesh.triangle_count();
+  std::vector<Box> prims(n);
+  for (std::size_t i = 0; i < n; ++i)
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t v = mesh.indices[3 * i + k];
+      const float p[3] = {mesh.x[v], mesh.y[v], mesh.z[v]};
+      prims[i].grow(p);
+    }
+  return Builder(std::move(prims)).run<Bvh4>(MeshLeaf{mesh});
+}
+
+BoxBvh4 build_box_bvh4(const BvhBox* boxes, std::size_t count) {
+  if (count == 0) {
+    BoxBvh4 out;
+    out.nodes.push_back(empty_node());
+    out.bounds = AABB{{0.0f, 0.0f, 0.0f}, {0.0f, 0.0f, 0.0f}};
+    out.stats.nodes = 1;
+    out.stats.bytes = sizeof(BvhNode4);
+    return out;
+  }
+  std::vector<Box> prims(count);
+  for (std::size_t i = 0; i < count; ++i) {
+    prims[i].grow(boxes[i].lo);
+    prims[i].grow(boxes[i].hi);
+  }
+  return Builder(std::move(prims)).run<BoxBvh4>(box_leaf);
+}
 
 }  // namespace gyro::detail

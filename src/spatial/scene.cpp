@@ -1,1 +1,877 @@
-// placeholder: being written
+// Scenes (gyro/scene.hpp): models in dense slots under an IdPool, world transforms and the
+// top-level structure (a BVH over boxes from spatial/bvh.hpp, or gyro::Octree) recomputed
+// lazily, and the queries over them.
+//
+// Exactness of the traversal. Every model's tree box is its world shape's AABB padded by
+// 2^-16 of its magnitude (|centre| + half extent), and a ray widens every box it tests by
+// 2^-17 of its origin's magnitude; together they exceed the 16 ulps of M (|origin - centre|
+// + size) by which gyro's raycasts may stray from the exact surface (gyro/raycast.hpp), and
+// the rounding of a mesh ray's move into its frame. So a model hit at t has the exact point
+// at t inside every box above it, and the slab test (Ize's robust traversal: entry may
+// exceed exit by 2^-18 of the exit; a slab product that is NaN, 0 * inf, is ignored) enters
+// them all. A subtree is skipped only when it is entered beyond the best t by 2^-16 of it,
+// far more than the few ulps by which a box's computed entry can follow the exact one.
+// Ties go to the lowest id index, so neither the structure nor the visiting order can
+// change the answer: both modes give the brute-force loop's bits. Overlap queries prune
+// with boxes padded the same way around the query shape (far more than the 1e-6 relative
+// slack of gyro's box tests), then run the exact test on each candidate.
+#include "gyro/scene.hpp"
+
+#include "core/error.hpp"
+#include "core/float_env.hpp"
+#include "core/id_pool.hpp"
+#include "core/parallel.hpp"
+#include "core/validate.hpp"
+#include "geometry/shape_checks.hpp"
+#include "gyro/overlap.hpp"
+#include "gyro/raycast.hpp"
+#include "spatial/bvh.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <bit>
+#include <cmath>
+#include <mutex>
+
+namespace gyro {
+namespace {
+
+using detail::fail;
+
+constexpr float kInf = __builtin_inff();
+constexpr std::size_t kMaxCount = 0x7FFFFFFF;
+constexpr std::size_t kRayChunk = 64;
+constexpr float kBoxPad = 0x1p-16f;
+constexpr float kRayPad = 0x1p-17f;
+constexpr float kSlabSlack = 0x1p-18f;
+constexpr float kBestSlack = 0x1p-16f;
+constexpr float kTinyPad = 1e-30f;
+constexpr uint32_t kNoIndex = 0xFFFFFFFFu;
+// Entries on a traversal stack: a node pushes at most 7 siblings per level.
+constexpr std::size_t kStackSize = 8 * (detail::kBvhMaxDepth + 2);
+
+bool finite3(const vec3& v) { return detail::is_finite(v.x) && detail::is_finite(v.y) && detail::is_finite(v.z); }
+float max_abs3(const vec3& v) { return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)}); }
+
+// v * R^T: the coordinates of v along R's rows.
+vec3 along_rows(const vec3& v, const mat3& r) {
+  return {dot(v, vec3{r.m[0][0], r.m[0][1], r.m[0][2]}), dot(v, vec3{r.m[1][0], r.m[1][1], r.m[1][2]}),
+          dot(v, vec3{r.m[2][0], r.m[2][1], r.m[2][2]})};
+}
+
+// Half extents of the world AABB of a box with these rows and half extents.
+vec3 aabb_half_of(const mat3& rows, const vec3& half) {
+  const float e[3] = {half.x, half.y, half.z};
+  vec3 out{0.0f, 0.0f, 0.0f};
+  for (int k = 0; k < 3; ++k)
+    out = out + vec3{std::abs(rows.m[k][0]), std::abs(rows.m[k][1]), std::abs(rows.m[k][2])} * e[k];
+  return out;
+}
+
+// [c - h, c + h] padded by kBoxPad of its magnitude (see the header comment).
+AABB padded_bounds(const vec3& c, const vec3& h) {
+  const float pad = kBoxPad * (max_abs3(c) + max_abs3(h)) + kTinyPad;
+  const vec3 p{pad, pad, pad};
+  return aabb_from_min_max(c - h - p, c + h + p);
+}
+
+Status check_transform(const ModelTransform& t, const char* what) {
+  if (!finite3(t.position)) return fail(Status::non_finite, "%s.position is not finite", what);
+  const quat& q = t.rotation;
+  if (!detail::is_finite(q.x) || !detail::is_finite(q.y) || !detail::is_finite(q.z) || !detail::is_finite(q.w))
+    return fail(Status::non_finite, "%s.rotation is not finite", what);
+  if (q.x == 0.0f && q.y == 0.0f && q.z == 0.0f && q.w == 0.0f)
+    return fail(Status::invalid_argument, "%s.rotation is the zero quaternion", what);
+  if (!detail::is_finite(t.scale)) return fail(Status::non_finite, "%s.scale is not finite", what);
+  if (!(t.scale > 0.0f)) return fail(Status::invalid_argument, "%s.scale = %g must be > 0", what, double(t.scale));
+  return Status::ok;
+}
+
+ModelTransform normalized_transform(const ModelTransform& t) { return {t.position, normalized(t.rotation), t.scale}; }
+
+Status check_shape(const ModelDef& d) {
+  switch (d.shape) {
+    case ModelShape::sphere:
+      if (!detail::is_finite(d.radius)) return fail(Status::non_finite, "ModelDef.radius is not finite");
+      if (!(d.radius >= 0.0f)) return fail(Status::invalid_argument, "ModelDef.radius = %g is negative", double(d.radius));
+      return Status::ok;
+    case ModelShape::box:
+      if (!finite3(d.half_extents)) return fail(Status::non_finite, "ModelDef.half_extents is not finite");
+      if (!(d.half_extents.x >= 0.0f && d.half_extents.y >= 0.0f && d.half_extents.z >= 0.0f))
+        return fail(Status::invalid_argument, "ModelDef.half_extents has a negative component");
+      return Status::ok;
+    case ModelShape::plane: {
+      if (!finite3(d.plane.normal) || !detail::is_finite(d.plane.distance))
+        return fail(Status::non_finite, "ModelDef.plane is not finite");
+      const float n2 = dot(d.plane.normal, d.plane.normal);
+      if (!(std::abs(n2 - 1.0f) <= 2e-3f))
+        return fail(Status::invalid_argument, "ModelDef.plane.normal has length^2 %g, not 1", double(n2));
+      return Status::ok;
+    }
+    case ModelShape::mesh:
+      if (!d.mesh) return fail(Status::null_argument, "ModelDef.mesh is null");
+      if (d.mesh->empty()) return fail(Status::invalid_argument, "ModelDef.mesh was not created (TriangleMesh::create)");
+      return Status::ok;
+  }
+  return fail(Status::invalid_argument, "ModelDef.shape = %u is not a model shape", unsigned(d.shape));
+}
+
+// A model's world placement: what every query reads (dense, by slot).
+struct Placed {
+  ModelShape shape = ModelShape::sphere;
+  uint32_t index = 0;  // the id's index: the tie-break of every query
+  bool placed = false;
+  ModelTransform world;
+  mat3 rot;
+  Sphere sphere;
+  OBB box;
+  Plane plane;
+  AABB bounds;
+  float lo[3] = {0.0f, 0.0f, 0.0f}, hi[3] = {0.0f, 0.0f, 0.0f};  // the tree's box: aabb_min / aabb_max(bounds)
+  const TriangleMesh* mesh = nullptr;
+};
+
+Placed place(const ModelDef& d, const ModelTransform& w, uint32_t index) {
+  Placed p;
+  p.shape = d.shape;
+  p.index = index;
+  p.world = w;
+  p.rot = to_mat3(w.rotation);
+  p.mesh = d.mesh.get();
+  vec3 centre = w.position, half{0.0f, 0.0f, 0.0f};
+  switch (d.shape) {
+    case ModelShape::sphere:
+      p.sphere = {w.position, d.radius * w.scale};
+      half = vec3{p.sphere.radius, p.sphere.radius, p.sphere.radius};
+      break;
+    case ModelShape::box:
+      p.box = {w.position, d.half_extents * w.scale, p.rot};
+      half = aabb_half_of(p.rot, p.box.half_extents);
+      break;
+    case ModelShape::mesh: {
+      const AABB local = d.mesh->bounds();
+      p.box = {transform_point(w, local.center), local.half_extents * w.scale, p.rot};
+      centre = p.box.center;
+      half = aabb_half_of(p.rot, p.box.half_extents);
+      break;
+    }
+    case ModelShape::plane: {
+      const vec3 n = d.plane.normal * p.rot;
+      p.plane = {n, d.plane.distance * w.scale + dot(n, w.position)};
+      p.bounds = {{0.0f, 0.0f, 0.0f}, {kInf, kInf, kInf}};
+      p.placed = finite3(p.plane.normal) && detail::is_finite(p.plane.distance) && finite3(w.position);
+      return p;
+    }
+  }
+  p.bounds = padded_bounds(centre, half);
+  const vec3 lo = aabb_min(p.bounds), hi = aabb_max(p.bounds);
+  p.lo[0] = lo.x, p.lo[1] = lo.y, p.lo[2] = lo.z, p.hi[0] = hi.x, p.hi[1] = hi.y, p.hi[2] = hi.z;
+  const float q[4] = {w.rotation.x, w.rotation.y, w.rotation.z, w.rotation.w};
+  bool ok = finite3(w.position) && detail::is_finite(w.scale) && finite3(half) && finite3(aabb_min(p.bounds)) &&
+            finite3(aabb_max(p.bounds)) && finite3(p.bounds.half_extents);
+  for (float v : q) ok = ok && detail::is_finite(v);
+  p.placed = ok;
+  return p;
+}
+
+// An AABB query region [lo, hi] widened like the models' boxes.
+struct Region {
+  float lo[3], hi[3];
+};
+
+Region region_of(const vec3& c, const vec3& h) {
+  const float pad = kBoxPad * (max_abs3(c) + max_abs3(h)) + kTinyPad;
+  const vec3 lo = c - h - vec3{pad, pad, pad}, hi = c + h + vec3{pad, pad, pad};
+  return {{lo.x, lo.y, lo.z}, {hi.x, hi.y, hi.z}};
+}
+
+bool region_touches(const Region& r, const float lo[3], const float hi[3]) {
+  return lo[0] <= r.hi[0] && r.lo[0] <= hi[0] && lo[1] <= r.hi[1] && r.lo[1] <= hi[1] && lo[2] <= r.hi[2] &&
+         r.lo[2] <= hi[2];
+}
+
+ModelId id_of(detail::Id id) { return {id.index, id.generation}; }
+detail::Id to_detail(ModelId id) { return {id.index, id.generation}; }
+
+}  // namespace
+
+// ------------------------------------------------------------------------ transforms
+
+ModelTransform compose(const ModelTransform& local, const ModelTransform& parent) {
+  return {transform_point(parent, local.position), normalized(parent.rotation * local.rotation),
+          parent.scale * local.scale};
+}
+
+vec3 transform_point(const ModelTransform& t, const vec3& p) { return (p * to_mat3(t.rotation)) * t.scale + t.position; }
+
+Ray to_local(const ModelTransform& t, const Ray& ray) {
+  const mat3 r = to_mat3(t.rotation);
+  return {along_rows(ray.origin - t.position, r) / t.scale, along_rows(ray.direction, r) / t.scale};
+}
+
+Sphere to_local(const ModelTransform& t, const Sphere& s) {
+  const mat3 r = to_mat3(t.rotation);
+  return {along_rows(s.center - t.position, r) / t.scale, s.radius / t.scale};
+}
+
+OBB to_local(const ModelTransform& t, const OBB& b) {
+  const mat3 r = to_mat3(t.rotation);
+  mat3 axes;
+  for (int k = 0; k < 3; ++k) {
+    const vec3 u = along_rows(vec3{b.orientation.m[k][0], b.orientation.m[k][1], b.orientation.m[k][2]}, r);
+    axes.m[k][0] = u.x, axes.m[k][1] = u.y, axes.m[k][2] = u.z;
+  }
+  return {along_rows(b.center - t.position, r) / t.scale, b.half_extents / t.scale, axes};
+}
+
+OBB to_local(const ModelTransform& t, const AABB& b) { return to_local(t, OBB{b.center, b.half_extents, mat3::identity()}); }
+
+// ------------------------------------------------------------------------ the scene
+
+struct Scene::Impl {
+  SceneSettings settings;
+  detail::IdPool pool;
+  std::vector<ModelDef> defs;    // by dense slot
+  std::vector<Placed> placed;    // by dense slot, valid once world_ready
+  std::vector<uint32_t> tree_slots;   // tree item k -> slot, ascending id index
+  std::vector<uint32_t> plane_slots;  // placed planes, ascending id index
+  detail::BoxBvh4 bvh;
+  Octree octree;
+  SceneAccel built = SceneAccel::bvh;
+  std::mutex mutex;
+  std::atomic<bool> world_ready{true};
+  std::atomic<bool> tree_ready{false};
+
+  void changed() {
+    world_ready.store(false, std::memory_order_relaxed);
+    tree_ready.store(false, std::memory_order_relaxed);
+  }
+
+  uint32_t slot(ModelId id) const { return pool.slot(to_detail(id)); }
+
+  void compute_world() {
+    const uint32_t n = pool.size();
+    placed.assign(n, Placed{});
+    std::vector<uint8_t> done(n, 0);
+    std::vector<uint32_t> chain;
+    for (uint32_t s = 0; s < n; ++s) {
+      // Walk up to the first placed ancestor (or a root), then place downwards.
+      chain.clear();
+      for (uint32_t c = s; !done[c];) {
+        chain.push_back(c);
+        if (defs[c].parent.is_null()) break;
+        c = slot(defs[c].parent);
+      }
+      while (!chain.empty()) {
+        const uint32_t c = chain.back();
+        chain.pop_back();
+        const ModelDef& d = defs[c];
+        const ModelTransform w = d.parent.is_null() ? d.transform : compose(d.transform, placed[slot(d.parent)].world);
+        placed[c] = place(d, w, pool.id_at(c).index);
+        done[c] = 1;
+      }
+    }
+  }
+
+  void build_tree() {
+    tree_slots.clear();
+    plane_slots.clear();
+    for (uint32_t s = 0; s < pool.size(); ++s) {
+      if (!placed[s].placed) continue;
+      (placed[s].shape == ModelShape::plane ? plane_slots : tree_slots).push_back(s);
+    }
+    const auto by_index = [&](uint32_t a, uint32_t b) { return placed[a].index < placed[b].index; };
+    std::sort(tree_slots.begin(), tree_slots.end(), by_index);
+    std::sort(plane_slots.begin(), plane_slots.end(), by_index);
+    built = settings.accel;
+    bvh = detail::BoxBvh4{};
+    octree.clear();
+    if (built == SceneAccel::bvh) {
+      std::vector<detail::BvhBox> boxes(tree_slots.size());
+      for (std::size_t k = 0; k < tree_slots.size(); ++k) {
+        const Placed& p = placed[tree_slots[k]];
+        boxes[k] = {{p.lo[0], p.lo[1], p.lo[2]}, {p.hi[0], p.hi[1], p.hi[2]}};
+      }
+      bvh = detail::build_box_bvh4(boxes.data(), boxes.size());
+    } else {
+      std::vector<AABB> boxes(tree_slots.size());
+      std::vector<uint32_t> ids(tree_slots.size());
+      for (std::size_t k = 0; k < tree_slots.size(); ++k) boxes[k] = placed[tree_slots[k]].bounds, ids[k] = uint32_t(k);
+      // The boxes were checked finite when placed and the def when configured.
+      if (octree.build(boxes.data(), ids.data(), boxes.size(), settings.octree) != Status::ok) octree.clear();
+    }
+  }
+
+  void ensure_world() {
+    if (world_ready.load(std::memory_order_acquire)) return;
+    std::lock_guard<std::mutex> lock(mutex);
+    if (world_ready.load(std::memory_order_relaxed)) return;
+    detail::FloatEnvGuard env;
+    compute_world();
+    world_ready.store(true, std::memory_order_release);
+  }
+
+  void ensure_tree() {
+    if (tree_ready.load(std::memory_order_acquire)) return;
+    ensure_world();
+    std::lock_guard<std::mutex> lock(mutex);
+    if (tree_ready.load(std::memory_order_relaxed)) return;
+    detail::FloatEnvGuard env;
+    build_tree();
+    tree_ready.store(true, std::memory_order_release);
+  }
+
+  // Calls leaf(slot) for each model whose own box, and every node box above it, passes
+  // box_ok(lo, hi).
+  template <class BoxOk, class Leaf> void walk(BoxOk&& box_ok, Leaf&& leaf) const {
+    const auto visit = [&](uint32_t slot) {
+      if (box_ok(placed[slot].lo, placed[slot].hi)) leaf(slot);
+    };
+    uint32_t stack[kStackSize];
+    int sp = 0;
+    if (built == SceneAccel::bvh) {
+      stack[sp++] = 0;
+      while (sp > 0) {
+        const uint32_t code = stack[--sp];
+        if (code & detail::kLeafBit) {
+          for (uint32_t item : bvh.leaves[code & ~detail::kLeafBit].item)
+            if (item != detail::kNoItem) visit(tree_slots[item]);
+          continue;
+        }
+        const detail::BvhNode4& node = bvh.nodes[code];
+        for (int k = 3; k >= 0; --k) {
+          if (node.child[k] == detail::kEmptyChild) continue;
+          const float lo[3] = {node.bounds[0][k], node.bounds[2][k], node.bounds[4][k]};
+          const float hi[3] = {node.bounds[1][k], node.bounds[3][k], node.bounds[5][k]};
+          if (box_ok(lo, hi)) stack[sp++] = node.child[k];
+        }
+      }
+      return;
+    }
+    const auto& nodes = octree.nodes();
+    if (nodes.empty()) return;
+    stack[sp++] = 0;
+    while (sp > 0) {
+      const OctreeNode& n = nodes[stack[--sp]];
+      if (!(n.lo[0] <= n.hi[0]) || !box_ok(n.lo, n.hi)) continue;
+      if (n.first_child == kOctreeLeaf) {
+        for (uint32_t r = n.first_item; r < n.first_item + n.item_count; ++r) visit(tree_slots[octree.items()[r]]);
+        continue;
+      }
+      for (uint32_t k = 8; k-- > 0;) stack[sp++] = n.first_child + k;
+    }
+  }
+};
+
+Scene::Scene() : impl_(std::make_unique<Impl>()) {}
+Scene::Scene(const SceneSettings& settings) : Scene() {
+  if (configure(settings) != Status::ok) detail::clear_error();
+}
+Scene::~Scene() = default;
+Scene::Scene(Scene&&) noexcept = default;
+Scene& Scene::operator=(Scene&&) noexcept = default;
+
+Status Scene::configure(const SceneSettings& s) {
+  if (s.accel != SceneAccel::bvh && s.accel != SceneAccel::octree)
+    return fail(Status::invalid_argument, "SceneSettings.accel = %u is not an acceleration mode", unsigned(s.accel));
+  Octree probe;
+  GYRO_TRY(probe.build(nullptr, nullptr, 0, s.octree));  // checks the def
+  impl_->settings = s;
+  impl_->tree_ready.store(false, std::memory_order_relaxed);
+  return Status::ok;
+}
+
+const SceneSettings& Scene::settings() const { return impl_->settings; }
+
+Status Scene::add_model(const ModelDef& def, ModelId* out) {
+  GYRO_TRY(detail::require_not_null(out, "out"));
+  GYRO_TRY(check_shape(def));
+  GYRO_TRY(check_transform(def.transform, "ModelDef.transform"));
+  Impl& m = *impl_;
+  if (!def.parent.is_null() && !m.pool.valid(to_detail(def.parent)))
+    return fail(Status::stale_id, "ModelDef.parent {%u, %u} is not a live model", def.parent.index, def.parent.generation);
+  if (m.pool.size() >= kMaxCount) return fail(Status::invalid_count, "a scene holds at most 2^31 - 1 models");
+  ModelDef d = def;
+  d.transform = normalized_transform(def.transform);
+  const ModelId id = id_of(m.pool.create());
+  m.defs.push_back(std::move(d));
+  m.changed();
+  *out = id;
+  return Status::ok;
+}
+
+Status Scene::remove_model(ModelId id) {
+  Impl& m = *impl_;
+  if (!m.pool.valid(to_detail(id))) return fail(Status::stale_id, "model {%u, %u} is not live", id.index, id.generation);
+  m.ensure_world();
+  for (uint32_t s = 0; s < m.pool.size(); ++s) {
+    ModelDef& d = m.defs[s];
+    if (!(d.parent == id)) continue;
+    if (m.placed[s].placed) d.transform = m.placed[s].world;
+    d.parent = ModelId{};
+  }
+  const detail::IdPool::Removal r = m.pool.destroy(to_detail(id));
+  if (r.moved_from != r.slot) m.defs[r.slot] = std::move(m.defs[r.moved_from]);
+  m.defs.pop_back();
+  m.changed();
+  return Status::ok;
+}
+
+Status Scene::set_transform(ModelId id, const ModelTransform& local) {
+  Impl& m = *impl_;
+  const uint32_t s = m.slot(id);
+  if (s == detail::IdPool::kNoSlot) return fail(Status::stale_id, "model {%u, %u} is not live", id.index, id.generation);
+  GYRO_TRY(check_transform(local, "transform"));
+  m.defs[s].transform = normalized_transform(local);
+  m.changed();
+  return Status::ok;
+}
+
+Status Scene::set_parent(ModelId id, ModelId parent) {
+  Impl& m = *impl_;
+  const uint32_t s = m.slot(id);
+  if (s == detail::IdPool::kNoSlot) return fail(Status::stale_id, "model {%u, %u} is not live", id.index, id.generation);
+  if (!parent.is_null()) {
+    if (!m.pool.valid(to_detail(parent)))
+      return fail(Status::stale_id, "parent {%u, %u} is not live", parent.index, parent.generation);
+    // The chains are acyclic, so this walk ends; it meets `id` only if parent descends from it.
+    for (ModelId a = parent; !a.is_null(); a = m.defs[m.slot(a)].parent)
+      if (a == id)
+        return fail(Status::invalid_argument, "making {%u, %u} the parent of {%u, %u} would close a cycle", parent.index,
+                    parent.generation, id.index, id.generation);
+  }
+  m.defs[s].parent = parent;
+  m.changed();
+  return Status::ok;
+}
+
+bool Scene::contains(ModelId id) const { return impl_->pool.valid(to_detail(id)); }
+std::size_t Scene::model_count() const { return impl_->pool.size(); }
+
+std::vector<ModelId> Scene::model_ids() const {
+  std::vector<ModelId> out(impl_->pool.size());
+  for (uint32_t s = 0; s < impl_->pool.size(); ++s) out[s] = id_of(impl_->pool.id_at(s));
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+Status Scene::model(ModelId id, ModelInfo* out) const {
+  GYRO_TRY(detail::require_not_null(out, "out"));
+  Impl& m = *impl_;
+  const uint32_t s = m.slot(id);
+  if (s == detail::IdPool::kNoSlot) return fail(Status::stale_id, "model {%u, %u} is not live", id.index, id.generation);
+  m.ensure_world();
+  const Placed& p = m.placed[s];
+  ModelInfo info;
+  info.def = m.defs[s];
+  info.world = p.world;
+  info.sphere = p.sphere;
+  info.box = p.box;
+  info.plane = p.plane;
+  info.bounds = p.bounds;
+  info.placed = p.placed;
+  *out = std::move(info);
+  return Status::ok;
+}
+
+Status Scene::children(ModelId id, std::vector<ModelId>& out) const {
+  out.clear();
+  const Impl& m = *impl_;
+  if (!m.pool.valid(to_detail(id))) return fail(Status::stale_id, "model {%u, %u} is not live", id.index, id.generation);
+  for (uint32_t s = 0; s < m.pool.size(); ++s)
+    if (m.defs[s].parent == id) out.push_back(id_of(m.pool.id_at(s)));
+  std::sort(out.begin(), out.end());
+  return Status::ok;
+}
+
+void Scene::prepare() const { impl_->ensure_tree(); }
+
+SceneStats Scene::stats() const {
+  const Impl& m = *impl_;
+  prepare();
+  SceneStats s;
+  s.accel = m.built;
+  s.models = m.pool.size();
+  s.tree_models = m.tree_slots.size();
+  s.planes = m.plane_slots.size();
+  if (m.built == SceneAccel::bvh) {
+    s.nodes = m.bvh.stats.nodes, s.leaves = m.bvh.stats.leaves, s.max_depth = m.bvh.stats.max_depth;
+    s.references = m.tree_slots.size();
+    s.bytes = m.bvh.stats.bytes;
+  } else {
+    const OctreeStats o = m.octree.stats();
+    s.nodes = o.nodes, s.leaves = o.leaves, s.max_depth = o.max_depth, s.references = o.references, s.bytes = o.bytes;
+  }
+  s.bytes += m.placed.size() * sizeof(Placed) + m.defs.size() * sizeof(ModelDef);
+  return s;
+}
+
+// ------------------------------------------------------------------------ raycasts
+
+namespace {
+
+struct Entry {
+  uint32_t code;
+  float near;
+};
+
+// One ray's walk: the slab test and the running best (closest) or first (any) hit.
+class RayWalk {
+ public:
+  RayWalk(const Scene::Impl& m, const Ray& ray, float tmin, float tmax, bool any)
+      : m_(m), ray_(ray), tmin_(tmin), tmax_(tmax), any_(any) {
+    const float o[3] = {ray.origin.x, ray.origin.y, ray.origin.z};
+    const float d[3] = {ray.direction.x, ray.direction.y, ray.direction.z};
+    const float pad = kRayPad * max_abs3(ray.origin);
+    for (int a = 0; a < 3; ++a) {
+      o_[a] = o[a];
+      inv_[a] = 1.0f / d[a];
+      neg_[a] = std::bit_cast<uint32_t>(inv_[a]) >> 31;
+      pad_[a] = pad;
+    }
+  }
+
+  SceneHit run() {
+    for (uint32_t s : m_.plane_slots) {
+      test(s);
+      if (any_ && found()) return best_;
+    }
+    if (!m_.tree_slots.empty()) m_.built == SceneAccel::bvh ? walk_bvh() : walk_octree();
+    return best_;
+  }
+
+ private:
+  const Scene::Impl& m_;
+  Ray ray_;
+  float tmin_, tmax_;
+  bool any_;
+  float o_[3], inv_[3], pad_[3];
+  uint32_t neg_[3];
+  float best_t_ = kInf;
+  uint32_t best_index_ = kNoIndex;
+  SceneHit best_;
+
+  bool found() const { return best_index_ != kNoIndex; }
+  float limit() const {
+    if (!found() || any_) return tmax_;
+    return std::min(tmax_, best_t_ + best_t_ * kBestSlack);
+  }
+
+  // Entry t of the box (kInf when the ray does not enter it within [tmin, limit]).
+  float enter(const float lo[3], const float hi[3], float limit) const {
+    float tn = tmin_, tf = limit;
+    for (int a = 0; a < 3; ++a) {
+      const float l = lo[a] - pad_[a], h = hi[a] + pad_[a];
+      const float t0 = ((neg_[a] ? h : l) - o_[a]) * inv_[a];
+      const float t1 = ((neg_[a] ? l : h) - o_[a]) * inv_[a];
+      tn = t0 > tn ? t0 : tn;  // a NaN slab (0 * inf) leaves tn as it was
+      tf = t1 < tf ? t1 : tf;
+    }
+    return tn <= tf + std::abs(tf) * kSlabSlack && tn < kInf ? tn : kInf;
+  }
+
+  void take(float t, uint32_t index, const SceneHit& h) {
+    if (t < best_t_ || (t == best_t_ && index < best_index_)) best_t_ = t, best_index_ = index, best_ = h;
+  }
+
+  // Tree models: their own box first (cheap), then the exact raycast.
+  void test_boxed(uint32_t slot) {
+    const Placed& p = m_.placed[slot];
+    if (enter(p.lo, p.hi, limit()) < kInf) test(slot);
+  }
+
+  void test(uint32_t slot) {
+    const Placed& p = m_.placed[slot];
+    SceneHit h;
+    switch (p.shape) {
+      case ModelShape::sphere: h.hit = raycast(p.sphere, ray_, tmin_, tmax_); break;
+      case ModelShape::box: h.hit = raycast(p.box, ray_, tmin_, tmax_); break;
+      case ModelShape::plane: h.hit = raycast(p.plane, ray_, tmin_, tmax_); break;
+      case ModelShape::mesh: {
+        // A smaller tmax only drops triangles beyond the best hit, which cannot win.
+        const float tmax = found() && !any_ ? std::min(tmax_, best_t_) : tmax_;
+        const MeshHit mh = raycast(*p.mesh, to_local(p.world, ray_), tmin_, tmax);
+        if (!mh.hit.hit) return;
+        h.hit.hit = true;
+        h.hit.t = mh.hit.t;
+        h.hit.point = ray_.origin + ray_.direction * mh.hit.t;
+        h.hit.normal = mh.hit.normal * p.rot;
+        h.primitive = mh.triangle;
+        h.u = mh.u, h.v = mh.v;
+        break;
+      }
+    }
+    if (!h.hit.hit) return;
+    h.model = id_of(m_.pool.id_at(slot));
+    take(h.hit.t, p.index, h);
+  }
+
+  // Pushes the entered children (n of them) farthest first, so the nearest is popped next;
+  // equal entries keep slot order, so the order is a function of the values alone.
+  static void push_sorted(Entry* hit, int n, Entry* stack, int& sp) {
+    for (int i = 1; i < n; ++i) {
+      const Entry e = hit[i];
+      int j = i;
+      while (j > 0 && hit[j - 1].near > e.near) hit[j] = hit[j - 1], --j;
+      hit[j] = e;
+    }
+    while (n > 0) stack[sp++] = hit[--n];
+  }
+
+  void walk_bvh() {
+    const detail::BoxBvh4& bvh = m_.bvh;
+    Entry stack[kStackSize];
+    int sp = 0;
+    stack[sp++] = {0, tmin_};
+    while (sp > 0) {
+      const Entry e = stack[--sp];
+      if (e.near > limit()) continue;
+      if (e.code & detail::kLeafBit) {
+        for (uint32_t item : bvh.leaves[e.code & ~detail::kLeafBit].item) {
+          if (item == detail::kNoItem) continue;
+          test_boxed(m_.tree_slots[item]);
+          if (any_ && found()) return;
+        }
+        continue;
+      }
+      const detail::BvhNode4& node = bvh.nodes[e.code];
+      Entry hit[4];
+      int n = 0;
+      const float lim = limit();
+      for (int k = 0; k < 4; ++k) {
+        if (node.child[k] == detail::kEmptyChild) continue;
+        const float lo[3] = {node.bounds[0][k], node.bounds[2][k], node.bounds[4][k]};
+        const float hi[3] = {node.bounds[1][k], node.bounds[3][k], node.bounds[5][k]};
+        const float t = enter(lo, hi, lim);
+        if (t < kInf) hit[n++] = {node.child[k], t};
+      }
+      push_sorted(hit, n, stack, sp);
+    }
+  }
+
+  void walk_octree() {
+    const auto& nodes = m_.octree.nodes();
+    const auto& items = m_.octree.items();
+    Entry stack[kStackSize];
+    int sp = 0;
+    {
+      const OctreeNode& root = nodes[0];
+      const float t = enter(root.lo, root.hi, tmax_);
+      if (t < kInf) stack[sp++] = {0, t};
+    }
+    while (sp > 0) {
+      const Entry e = stack[--sp];
+      if (e.near > limit()) continue;
+      const OctreeNode& n = nodes[e.code];
+      if (n.first_child == kOctreeLeaf) {
+        for (uint32_t r = n.first_item; r < n.first_item + n.item_count; ++r) {
+          test_boxed(m_.tree_slots[items[r]]);
+          if (any_ && found()) return;
+        }
+        continue;
+      }
+      Entry hit[8];
+      int cnt = 0;
+      const float lim = limit();
+      for (uint32_t k = 0; k < 8; ++k) {
+        const OctreeNode& c = nodes[n.first_child + k];
+        if (!(c.lo[0] <= c.hi[0])) continue;
+        const float t = enter(c.lo, c.hi, lim);
+        if (t < kInf) hit[cnt++] = {n.first_child + k, t};
+      }
+      push_sorted(hit, cnt, stack, sp);
+    }
+  }
+};
+
+// The rays the mesh queries flag as kRayInvalid (triangle_mesh.hpp): a NaN or infinite
+// coordinate, a zero direction, tmin not finite or negative, tmax NaN or below tmin.
+bool valid_ray(const Ray& ray, float tmin, float tmax) {
+  const vec3& d = ray.direction;
+  return finite3(ray.origin) && finite3(d) && (d.x != 0.0f || d.y != 0.0f || d.z != 0.0f) && detail::is_finite(tmin) &&
+         tmin >= 0.0f && tmax >= tmin;
+}
+
+SceneHit trace(const Scene& scene, const Ray& ray, float tmin, float tmax, bool any) {
+  if (!valid_ray(ray, tmin, tmax)) return {};
+  const Scene::Impl& m = *scene.impl();
+  return RayWalk(m, ray, tmin, tmax, any).run();
+}
+
+Status run_batch(const Scene& scene, const RaysView& rays, std::size_t n, const SceneHitsOut& hits, bool any) {
+  if (n > kMaxCount) return fail(Status::invalid_count, "ray count %zu must be below 2^31", n);
+  if (n == 0) return Status::ok;
+  GYRO_TRY(detail::require_not_null(hits.t, "hits.t"));
+  GYRO_TRY(detail::require_not_null(hits.model, "hits.model"));
+  const int normals = (hits.nx != nullptr) + (hits.ny != nullptr) + (hits.nz != nullptr);
+  if (normals != 0 && normals != 3) return fail(Status::null_argument, "hits.nx, ny, nz: give all three or none");
+  if ((hits.u == nullptr) != (hits.v == nullptr)) return fail(Status::null_argument, "hits.u, v: give both or none");
+  GYRO_TRY(detail::check_rays(rays, n, false));  // bad values are flagged per ray
+  detail::FloatEnvGuard env;
+  scene.prepare();
+  const Scene::Impl& m = *scene.impl();
+  detail::parallel_for(n, kRayChunk, [&](std::size_t b, std::size_t e) {
+    for (std::size_t i = b; i < e; ++i) {
+      const Ray ray{{rays.ox[i], rays.oy[i], rays.oz[i]}, {rays.dx[i], rays.dy[i], rays.dz[i]}};
+      const float tmin = rays.tmin ? rays.tmin[i] : 0.0f, tmax = rays.tmax ? rays.tmax[i] : kInf;
+      const bool valid = valid_ray(ray, tmin, tmax);
+      const SceneHit h = valid ? RayWalk(m, ray, tmin, tmax, any).run() : SceneHit{};
+      hits.t[i] = h.hit.hit ? h.hit.t : kInf;
+      hits.model[i] = h.model;
+      if (hits.primitive) hits.primitive[i] = h.hit.hit ? int32_t(h.primitive) : valid ? -1 : kRayInvalid;
+      if (normals) hits.nx[i] = h.hit.normal.x, hits.ny[i] = h.hit.normal.y, hits.nz[i] = h.hit.normal.z;
+      if (hits.u) hits.u[i] = h.u, hits.v[i] = h.v;
+    }
+  });
+  return Status::ok;
+}
+
+}  // namespace
+
+SceneHit raycast(const Scene& scene, const Ray& ray, float tmin, float tmax) {
+  detail::FloatEnvGuard env;
+  scene.prepare();
+  return trace(scene, ray, tmin, tmax, false);
+}
+
+SceneHit raycast_any(const Scene& scene, const Ray& ray, float tmin, float tmax) {
+  detail::FloatEnvGuard env;
+  scene.prepare();
+  return trace(scene, ray, tmin, tmax, true);
+}
+
+Status raycast_closest(const Scene& scene, const RaysView& rays, std::size_t ray_count, const SceneHitsOut& hits) {
+  return run_batch(scene, rays, ray_count, hits, false);
+}
+
+Status raycast_any(const Scene& scene, const RaysView& rays, std::size_t ray_count, const SceneHitsOut& hits) {
+  return run_batch(scene, rays, ray_count, hits, true);
+}
+
+// ------------------------------------------------------------------------ queries
+
+namespace {
+
+// Candidates from the tree (box_ok on node boxes), every plane, then the exact test;
+// ids ascending, each once.
+template <class BoxOk, class Exact>
+void collect(const Scene& scene, BoxOk&& box_ok, Exact&& exact, std::vector<ModelId>& out) {
+  scene.prepare();
+  const Scene::Impl& m = *scene.impl();
+  std::vector<uint32_t> slots;
+  for (uint32_t s : m.plane_slots)
+    if (exact(m.placed[s])) slots.push_back(s);
+  m.walk(box_ok, [&](uint32_t s) {
+    if (exact(m.placed[s])) slots.push_back(s);
+  });
+  std::sort(slots.begin(), slots.end());
+  slots.erase(std::unique(slots.begin(), slots.end()), slots.end());
+  out.reserve(slots.size());
+  for (uint32_t s : slots) out.push_back(id_of(m.pool.id_at(s)));
+  std::sort(out.begin(), out.end());
+}
+
+Status check_obb(const OBB& b) {
+  if (!finite3(b.center) || !finite3(b.half_extents)) return fail(Status::non_finite, "box is not finite");
+  for (int k = 0; k < 3; ++k)
+    if (!finite3({b.orientation.m[k][0], b.orientation.m[k][1], b.orientation.m[k][2]}))
+      return fail(Status::non_finite, "box orientation is not finite");
+  if (!(b.half_extents.x >= 0.0f && b.half_extents.y >= 0.0f && b.half_extents.z >= 0.0f))
+    return fail(Status::invalid_argument, "box has a negative half extent");
+  return Status::ok;
+}
+
+// The exact test of a query shape (Sphere, AABB or OBB) against a model, and the pruning
+// region around it; the three shape queries share it.
+template <class Shape> bool model_overlaps(const Shape& q, const Placed& p) {
+  switch (p.shape) {
+    case ModelShape::sphere: return overlaps(q, p.sphere);
+    case ModelShape::box: return overlaps(q, p.box);
+    case ModelShape::plane: return overlaps(q, p.plane);
+    case ModelShape::mesh: return overlaps(*p.mesh, to_local(p.world, q));
+  }
+  return false;
+}
+
+template <class Shape> Status query_shape(const Scene& scene, const Shape& q, const Region& r, std::vector<ModelId>& out) {
+  detail::FloatEnvGuard env;
+  collect(
+      scene, [&](const float lo[3], const float hi[3]) { return region_touches(r, lo, hi); },
+      [&](const Placed& p) { return model_overlaps(q, p); }, out);
+  return Status::ok;
+}
+
+// The plane model against the frustum's corners: out only when all eight lie strictly on
+// one side (by more than the rounding of the corners and of the distances).
+bool plane_touches(const Frustum& f, const Plane& p) {
+  vec3 c[8];
+  frustum_corners(f, c);
+  float mag = std::abs(p.distance);
+  for (const vec3& v : c) mag = std::max(mag, max_abs3(v));
+  const float tol = 1e-5f * mag + 1e-30f;
+  int above = 0, below = 0;
+  for (const vec3& v : c) {
+    const float d = dot(p.normal, v) - p.distance;
+    above += d > tol;
+    below += d < -tol;
+  }
+  return above != 8 && below != 8;
+}
+
+}  // namespace
+
+Status query(const Scene& scene, const Sphere& q, std::vector<ModelId>& out) {
+  out.clear();
+  if (!finite3(q.center) || !detail::is_finite(q.radius)) return fail(Status::non_finite, "sphere is not finite");
+  if (!(q.radius >= 0.0f)) return fail(Status::invalid_argument, "sphere radius %g is negative", double(q.radius));
+  return query_shape(scene, q, region_of(q.center, {q.radius, q.radius, q.radius}), out);
+}
+
+Status query(const Scene& scene, const AABB& q, std::vector<ModelId>& out) {
+  out.clear();
+  if (!finite3(q.center) || !finite3(q.half_extents)) return fail(Status::non_finite, "box is not finite");
+  if (!(q.half_extents.x >= 0.0f && q.half_extents.y >= 0.0f && q.half_extents.z >= 0.0f))
+    return fail(Status::invalid_argument, "box has a negative half extent");
+  return query_shape(scene, q, region_of(q.center, q.half_extents), out);
+}
+
+Status query(const Scene& scene, const OBB& q, std::vector<ModelId>& out) {
+  out.clear();
+  GYRO_TRY(check_obb(q));
+  return query_shape(scene, q, region_of(q.center, aabb_half_of(q.orientation, q.half_extents)), out);
+}
+
+Status query(const Scene& scene, const Frustum& f, std::vector<ModelId>& out) {
+  out.clear();
+  GYRO_TRY(detail::check_frustum(f, "frustum"));
+  detail::FloatEnvGuard env;
+  collect(
+      scene, [&](const float lo[3], const float hi[3]) { return detail::frustum_may_touch(f, lo, hi); },
+      [&](const Placed& p) {
+        switch (p.shape) {
+          case ModelShape::sphere: return intersects(f, p.sphere);
+          case ModelShape::box:
+          case ModelShape::mesh: return intersects(f, p.box);
+          case ModelShape::plane: return plane_touches(f, p.plane);
+        }
+        return false;
+      },
+      out);
+  return Status::ok;
+}
+
+Status pick(const Scene& scene, const Camera& camera, vec2 screen_point, vec2 viewport_size, SceneHit* out) {
+  GYRO_TRY(detail::require_not_null(out, "out"));
+  *out = SceneHit{};
+  GYRO_TRY(check_camera(camera));
+  if (!detail::is_finite(screen_point.x) || !detail::is_finite(screen_point.y) || !detail::is_finite(viewport_size.x) ||
+      !detail::is_finite(viewport_size.y))
+    return fail(Status::non_finite, "pick: screen point or viewport size is not finite");
+  if (!(viewport_size.x > 0.0f && viewport_size.y > 0.0f))
+    return fail(Status::invalid_argument, "pick: viewport size (%g, %g) must be > 0", double(viewport_size.x),
+                double(viewport_size.y));
+  *out = raycast(scene, picking_ray(camera, screen_point, viewport_size));
+  return Status::ok;
+}
+
+}  // namespace gyro

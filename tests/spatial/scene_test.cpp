@@ -1,1 +1,1048 @@
-// placeholder: being written
+// Scenes against brute force: raycasts (single and batch, closest and any) must equal a loop
+// over every model's own raycast bit for bit (gyro::raycast on the world sphere, OBB or
+// plane; the mesh raycast on the ray moved by to_local), in both acceleration modes, at every
+// SIMD level and at 1 and 3 threads, before and after removes, moves and re-parenting.
+// Overlap and frustum queries must equal the brute-force loop over the same exact tests.
+// World placement is checked against binary64, ids against staleness, and bad input
+// against changing anything.
+#include "gyro/mesh.hpp"
+#include "gyro/overlap.hpp"
+#include "gyro/raycast.hpp"
+#include "gyro/runtime.hpp"
+#include "gyro/scene.hpp"
+#include "determinism.hpp"
+#include "workloads.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <bit>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <thread>
+
+namespace gyro {
+namespace {
+
+using testing::SplitMix64;
+
+constexpr float kInf = __builtin_inff();
+
+uint32_t bits(float f) { return std::bit_cast<uint32_t>(f); }
+float uni(SplitMix64& rng, double lo, double hi) { return float(lo + (hi - lo) * rng.u()); }
+
+quat random_rotation(SplitMix64& rng) {
+  const vec3 axis{uni(rng, -1, 1), uni(rng, -1, 1), uni(rng, -1, 1)};
+  return from_axis_angle(axis, uni(rng, -3.2, 3.2));
+}
+
+float grid_height(float x, float z, void*) { return 0.1f * x - 0.05f * z + ((int(x * 2.0f) + int(z * 2.0f)) & 1) * 0.2f; }
+
+std::vector<std::shared_ptr<const TriangleMesh>> test_meshes() {
+  std::vector<std::shared_ptr<const TriangleMesh>> out;
+  for (const MeshData& data : {make_box_mesh({1.0f, 0.5f, 2.0f}), make_sphere_mesh(1.5f, 6, 10),
+                               make_grid_mesh(6, 6, 0.5f, grid_height, nullptr)}) {
+    auto m = std::make_shared<TriangleMesh>();
+    EXPECT_EQ(TriangleMesh::create(data, *m), Status::ok);
+    out.push_back(std::move(m));
+  }
+  return out;
+}
+
+ModelTransform random_transform(SplitMix64& rng, float spread) {
+  ModelTransform t;
+  t.position = {uni(rng, -spread, spread), uni(rng, -spread, spread), uni(rng, -spread, spread)};
+  t.rotation = random_rotation(rng);
+  t.scale = rng.u() < 0.5 ? 1.0f : uni(rng, 0.5, 2.0);
+  return t;
+}
+
+// A random model: spheres, boxes, instanced meshes, some degenerate, a quarter parented.
+ModelDef random_def(SplitMix64& rng, const std::vector<std::shared_ptr<const TriangleMesh>>& meshes,
+                    const std::vector<ModelId>& live, float spread = 50.0f) {
+  ModelDef d;
+  const double kind = rng.u();
+  if (kind < 0.4) {
+    d.shape = ModelShape::sphere;
+    d.radius = rng.u() < 0.05 ? 0.0f : uni(rng, 0.2, 3.0);
+  } else if (kind < 0.72) {
+    d.shape = ModelShape::box;
+    d.half_extents = {uni(rng, 0.2, 3.0), uni(rng, 0.2, 3.0), uni(rng, 0.2, 3.0)};
+    if (rng.u() < 0.05) d.half_extents.y = 0.0f;
+  } else {
+    d.shape = ModelShape::mesh;
+    d.mesh = meshes[rng.next() % meshes.size()];
+  }
+  const bool child = !live.empty() && rng.u() < 0.25;
+  d.transform = random_transform(rng, child ? 5.0f : spread);
+  if (child) d.parent = live[rng.next() % live.size()];
+  return d;
+}
+
+struct TestScene {
+  Scene scene;
+  std::vector<std::shared_ptr<const TriangleMesh>> meshes = test_meshes();
+  std::vector<ModelId> ids;
+
+  explicit TestScene(std::size_t n, uint64_t seed, float spread = 50.0f) {
+    SplitMix64 rng(seed);
+    for (std::size_t i = 0; i < n; ++i) add(random_def(rng, meshes, ids, spread));
+    // Two planes (a tilted ground and a far wall), kept outside the tree.
+    ModelDef p;
+    p.shape = ModelShape::plane;
+    p.plane = {{0.0f, 1.0f, 0.0f}, -60.0f};
+    p.transform.rotation = from_axis_angle({1.0f, 0.0f, 0.2f}, 0.1f);
+    add(p);
+    p.plane = {{0.0f, 0.0f, 1.0f}, 80.0f};
+    p.transform = {};
+    add(p);
+  }
+  ModelId add(const ModelDef& d) {
+    ModelId id;
+    EXPECT_EQ(scene.add_model(d, &id), Status::ok) << last_error();
+    ids.push_back(id);
+    return id;
+  }
+};
+
+struct Snapshot {
+  ModelId id;
+  ModelInfo info;
+};
+
+std::vector<Snapshot> snapshot(const Scene& scene) {
+  std::vector<Snapshot> out;
+  for (ModelId id : scene.model_ids()) {
+    Snapshot s{id, {}};
+    EXPECT_EQ(scene.model(id, &s.info), Status::ok);
+    out.push_back(std::move(s));
+  }
+  return out;
+}
+
+// One model's hit as the header defines it, computed from the public pieces.
+SceneHit model_hit(const Snapshot& m, const Ray& ray, float tmin, float tmax) {
+  SceneHit h;
+  switch (m.info.def.shape) {
+    case ModelShape::sphere: h.hit = raycast(m.info.sphere, ray, tmin, tmax); break;
+    case ModelShape::box: h.hit = raycast(m.info.box, ray, tmin, tmax); break;
+    case ModelShape::plane: h.hit = raycast(m.info.plane, ray, tmin, tmax); break;
+    case ModelShape::mesh: {
+      const MeshHit mh = raycast(*m.info.def.mesh, to_local(m.info.world, ray), tmin, tmax);
+      if (!mh.hit.hit) break;
+      h.hit = mh.hit;
+      h.hit.point = ray.origin + ray.direction * mh.hit.t;
+      h.hit.normal = mh.hit.normal * to_mat3(m.info.world.rotation);
+      h.primitive = mh.triangle;
+      h.u = mh.u, h.v = mh.v;
+      break;
+    }
+  }
+  if (h.hit.hit) h.model = m.id;
+  return h;
+}
+
+SceneHit brute_closest(const std::vector<Snapshot>& models, const Ray& ray, float tmin, float tmax) {
+  SceneHit best;
+  for (const Snapshot& m : models) {
+    const SceneHit h = model_hit(m, ray, tmin, tmax);
+    if (!h.hit.hit) continue;
+    if (!best.hit.hit || h.hit.t < best.hit.t || (h.hit.t == best.hit.t && h.model.index < best.model.index)) best = h;
+  }
+  return best;
+}
+
+void expect_same(const SceneHit& a, const SceneHit& b, std::size_t ray) {
+  ASSERT_EQ(a.hit.hit, b.hit.hit) << "ray " << ray;
+  EXPECT_EQ(a.model, b.model) << "ray " << ray;
+  EXPECT_EQ(bits(a.hit.t), bits(b.hit.t)) << "ray " << ray;
+  EXPECT_EQ(bits(a.hit.point.x), bits(b.hit.point.x)) << "ray " << ray;
+  EXPECT_EQ(bits(a.hit.point.y), bits(b.hit.point.y)) << "ray " << ray;
+  EXPECT_EQ(bits(a.hit.point.z), bits(b.hit.point.z)) << "ray " << ray;
+  EXPECT_EQ(bits(a.hit.normal.x), bits(b.hit.normal.x)) << "ray " << ray;
+  EXPECT_EQ(bits(a.hit.normal.y), bits(b.hit.normal.y)) << "ray " << ray;
+  EXPECT_EQ(bits(a.hit.normal.z), bits(b.hit.normal.z)) << "ray " << ray;
+  EXPECT_EQ(a.primitive, b.primitive) << "ray " << ray;
+  EXPECT_EQ(bits(a.u), bits(b.u)) << "ray " << ray;
+  EXPECT_EQ(bits(a.v), bits(b.v)) << "ray " << ray;
+}
+
+struct Rays {
+  testing::RaySet set;
+  std::vector<float> tmin, tmax;
+  RaysView view() const {
+    RaysView v = set.view();
+    v.tmin = tmin.data(), v.tmax = tmax.data();
+    return v;
+  }
+  Ray ray(std::size_t i) const {
+    return {{set.ox[i], set.oy[i], set.oz[i]}, {set.dx[i], set.dy[i], set.dz[i]}};
+  }
+};
+
+// Random rays, rays aimed at model centres (hits), from inside models, axis-parallel ones,
+// zero-length ones, [tmin, tmax] windows, and near misses: rays from far away grazing a
+// sphere's silhouette or a box's corner within a few ulps (where a raycast's rounding may
+// report a hit that the exact ray would miss, so the tree's margins must keep the model).
+Rays make_rays(const std::vector<Snapshot>& models, std::size_t n, uint64_t seed) {
+  SplitMix64 rng(seed);
+  Rays r;
+  for (std::size_t i = 0; i < n; ++i) {
+    vec3 o{uni(rng, -65, 65), uni(rng, -65, 65), uni(rng, -65, 65)};
+    vec3 d{uni(rng, -1, 1), uni(rng, -1, 1), uni(rng, -1, 1)};
+    const Snapshot& m = models[rng.next() % models.size()];
+    const vec3 c = m.info.def.shape == ModelShape::plane ? vec3{} : m.info.bounds.center;
+    switch (i % 10) {
+      case 0: case 1: d = c - o; break;                              // aimed at a model
+      case 2: o = c; break;                                          // from inside a model
+      case 3: d.x = 0.0f, d.z = 0.0f; d.y = d.y == 0.0f ? 1.0f : d.y; break;  // axis-parallel
+      case 4: d = (c - o) * uni(rng, 0.01, 100.0); break;            // unnormalised lengths
+      case 5: d = d * 1e-3f; break;
+      case 6: case 7: {
+        // A target on (or a hair off) the silhouette of a sphere or a box corner, seen from
+        // 10^2 to 10^4 away.
+        const vec3 far_dir = normalized(vec3{uni(rng, -1, 1), uni(rng, -1, 1), uni(rng, -1, 1)});
+        vec3 target = c;
+        const float hair = 1.0f + float(int(rng.next() % 7) - 3) * 1e-7f;
+        if (m.info.def.shape == ModelShape::sphere) {
+          vec3 side = cross(far_dir, vec3{0.3f, 1.0f, -0.2f});
+          side = normalized(side);
+          target = m.info.sphere.center + side * (m.info.sphere.radius * hair);
+        } else if (m.info.def.shape == ModelShape::box) {
+          const OBB& b = m.info.box;
+          const float sx = rng.u() < 0.5 ? -1.0f : 1.0f, sy = rng.u() < 0.5 ? -1.0f : 1.0f, sz = rng.u() < 0.5 ? -1.0f : 1.0f;
+          const vec3 local{sx * b.half_extents.x * hair, sy * b.half_extents.y * hair, sz * b.half_extents.z * hair};
+          target = b.center + local * b.orientation;
+        }
+        o = target + far_dir * float(std::pow(10.0, 2.0 + 2.0 * rng.u()));
+        d = target - o;
+        if (i % 10 == 7) d = normalized(d);
+        break;
+      }
+      default: break;
+    }
+    if (i % 97 == 0) d = {0.0f, 0.0f, 0.0f};
+    r.set.push(o.x, o.y, o.z, d.x, d.y, d.z);
+    const bool window = i % 5 == 0;
+    r.tmin.push_back(window ? uni(rng, 0.0, 0.5) : 0.0f);
+    r.tmax.push_back(window ? uni(rng, 0.5, 1.5) : kInf);
+  }
+  return r;
+}
+
+struct Columns {
+  std::vector<float> t, nx, ny, nz, u, v;
+  std::vector<int32_t> primitive;
+  std::vector<ModelId> model;
+  explicit Columns(std::size_t n)
+      : t(n, -1.0f), nx(n, -1.0f), ny(n, -1.0f), nz(n, -1.0f), u(n, -1.0f), v(n, -1.0f), primitive(n, -7), model(n, {9, 9}) {}
+  SceneHitsOut out() {
+    return {t.data(), model.data(), primitive.data(), nx.data(), ny.data(), nz.data(), u.data(), v.data()};
+  }
+  SceneHit at(std::size_t i) const {
+    SceneHit h;
+    h.model = model[i];
+    h.hit.hit = !model[i].is_null();
+    h.hit.t = h.hit.hit ? t[i] : 0.0f;
+    h.hit.normal = {nx[i], ny[i], nz[i]};
+    h.primitive = primitive[i] < 0 ? 0 : uint32_t(primitive[i]);
+    h.u = u[i], h.v = v[i];
+    return h;
+  }
+};
+
+// The rays the mesh and scene batches flag (triangle_mesh.hpp's kRayInvalid).
+bool ray_valid(const Rays& r, std::size_t i) {
+  const float v[6] = {r.set.ox[i], r.set.oy[i], r.set.oz[i], r.set.dx[i], r.set.dy[i], r.set.dz[i]};
+  for (float x : v)
+    if (!std::isfinite(x)) return false;
+  return (v[3] != 0.0f || v[4] != 0.0f || v[5] != 0.0f) && std::isfinite(r.tmin[i]) && r.tmin[i] >= 0.0f &&
+         r.tmax[i] >= r.tmin[i];
+}
+
+void expect_batch_matches(const Columns& c, const std::vector<SceneHit>& expect, const Rays& rays, std::size_t i) {
+  const SceneHit& e = expect[i];
+  ASSERT_EQ(c.model[i], e.model) << "ray " << i;
+  EXPECT_EQ(bits(c.t[i]), bits(e.hit.hit ? e.hit.t : kInf)) << "ray " << i;
+  EXPECT_EQ(c.primitive[i], e.hit.hit ? int32_t(e.primitive) : ray_valid(rays, i) ? -1 : kRayInvalid) << "ray " << i;
+  EXPECT_EQ(bits(c.nx[i]), bits(e.hit.normal.x)) << "ray " << i;
+  EXPECT_EQ(bits(c.ny[i]), bits(e.hit.normal.y)) << "ray " << i;
+  EXPECT_EQ(bits(c.nz[i]), bits(e.hit.normal.z)) << "ray " << i;
+  EXPECT_EQ(bits(c.u[i]), bits(e.u)) << "ray " << i;
+  EXPECT_EQ(bits(c.v[i]), bits(e.v)) << "ray " << i;
+}
+
+class ScopedExecution {
+ public:
+  ScopedExecution(SimdLevel level, uint32_t threads) {
+    EXPECT_EQ(set_simd_level(level), Status::ok);
+    EXPECT_EQ(set_thread_count(threads), Status::ok);
+  }
+  ~ScopedExecution() {
+    set_simd_level(SimdLevel::automatic);
+    set_thread_count(0);
+  }
+};
+
+// Every raycast path against the brute force, in both modes; the batch at every level and
+// at 1 and 3 threads. *hit_count gets how many rays hit (so a test can insist they do).
+void check_raycasts(Scene& scene, const Rays& rays, std::size_t* hit_count) {
+  const std::vector<Snapshot> models = snapshot(scene);
+  const std::size_t n = rays.set.size();
+  std::vector<SceneHit> expect(n);
+  std::size_t hits = 0, invalid = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    expect[i] = brute_closest(models, rays.ray(i), rays.tmin[i], rays.tmax[i]);
+    hits += expect[i].hit.hit;
+    invalid += !ray_valid(rays, i);
+  }
+  EXPECT_GT(invalid, 0u);  // the zero directions
+  *hit_count = hits;
+  for (const SceneAccel accel : {SceneAccel::bvh, SceneAccel::octree}) {
+    SceneSettings settings;
+    settings.accel = accel;
+    settings.octree.leaf_capacity = 4;
+    EXPECT_EQ(scene.configure(settings), Status::ok);
+    for (std::size_t i = 0; i < n; ++i) {
+      expect_same(raycast(scene, rays.ray(i), rays.tmin[i], rays.tmax[i]), expect[i], i);
+      const SceneHit any = raycast_any(scene, rays.ray(i), rays.tmin[i], rays.tmax[i]);
+      ASSERT_EQ(any.hit.hit, expect[i].hit.hit) << "ray " << i;
+      if (any.hit.hit) {
+        // The model it names is hit, and the hit reported is that model's own closest one.
+        const auto it = std::find_if(models.begin(), models.end(), [&](const Snapshot& m) { return m.id == any.model; });
+        ASSERT_NE(it, models.end());
+        expect_same(any, model_hit(*it, rays.ray(i), rays.tmin[i], rays.tmax[i]), i);
+      }
+    }
+    std::vector<ModelId> any_first;
+    for (const SimdLevel level : testing::available_levels())
+      for (const uint32_t threads : {1u, 3u}) {
+        ScopedExecution exec(level, threads);
+        Columns c(n);
+        ASSERT_EQ(raycast_closest(scene, rays.view(), n, c.out()), Status::ok);
+        for (std::size_t i = 0; i < n; ++i) expect_batch_matches(c, expect, rays, i);
+        Columns a(n);
+        ASSERT_EQ(raycast_any(scene, rays.view(), n, a.out()), Status::ok);
+        if (any_first.empty()) any_first = a.model;
+        EXPECT_EQ(a.model, any_first) << simd_level_name(level) << " x" << threads;
+        for (std::size_t i = 0; i < n; ++i) ASSERT_EQ(a.model[i].is_null(), !expect[i].hit.hit) << "ray " << i;
+      }
+  }
+}
+
+TEST(Scene, RaycastsEqualBruteForceInBothModes) {
+  TestScene s(300, 21);
+  const Rays rays = make_rays(snapshot(s.scene), 1200, 22);
+  std::size_t hits = 0;
+  check_raycasts(s.scene, rays, &hits);
+  EXPECT_GT(hits, 500u);
+  EXPECT_LT(hits, rays.set.size());
+}
+
+TEST(Scene, RaycastsStayExactAfterRemovesMovesAndReparenting) {
+  TestScene s(260, 31);
+  SplitMix64 rng(32);
+  for (int k = 0; k < 60; ++k) {
+    const std::size_t i = rng.next() % s.ids.size();
+    ASSERT_EQ(s.scene.remove_model(s.ids[i]), Status::ok);
+    s.ids.erase(s.ids.begin() + std::ptrdiff_t(i));
+  }
+  for (int k = 0; k < 60; ++k)
+    ASSERT_EQ(s.scene.set_transform(s.ids[rng.next() % s.ids.size()], random_transform(rng, 40.0f)), Status::ok);
+  for (int k = 0; k < 40; ++k) {
+    const ModelId a = s.ids[rng.next() % s.ids.size()], b = s.ids[rng.next() % s.ids.size()];
+    const Status st = s.scene.set_parent(a, b);
+    EXPECT_TRUE(st == Status::ok || st == Status::invalid_argument);
+  }
+  for (int k = 0; k < 40; ++k) s.add(random_def(rng, s.meshes, s.ids));  // reuses freed indices
+  const Rays rays = make_rays(snapshot(s.scene), 600, 33);
+  std::size_t hits = 0;
+  check_raycasts(s.scene, rays, &hits);
+  EXPECT_GT(hits, 200u);
+}
+
+// Ties: models hit at the same t. The lowest id index wins whatever the slot order and
+// whatever the traversal meets first.
+TEST(Scene, TiesGoToTheLowestIdIndex) {
+  Scene scene;
+  ModelDef d;
+  d.shape = ModelShape::box;
+  d.half_extents = {1.0f, 1.0f, 1.0f};
+  ModelId ids[4];
+  for (ModelId& id : ids) ASSERT_EQ(scene.add_model(d, &id), Status::ok);
+  // Remove index 0 and 1 (slots move), then re-add: index 1 comes back first (last freed first).
+  ASSERT_EQ(scene.remove_model(ids[0]), Status::ok);
+  ASSERT_EQ(scene.remove_model(ids[1]), Status::ok);
+  ModelId again;
+  ASSERT_EQ(scene.add_model(d, &again), Status::ok);
+  EXPECT_EQ(again.index, 1u);
+  for (const SceneAccel accel : {SceneAccel::bvh, SceneAccel::octree}) {
+    ASSERT_EQ(scene.configure({accel, {}}), Status::ok);
+    const SceneHit h = raycast(scene, Ray{{0.0f, 0.0f, -5.0f}, {0.0f, 0.0f, 1.0f}});
+    ASSERT_TRUE(h.hit.hit);
+    EXPECT_EQ(h.hit.t, 4.0f);
+    EXPECT_EQ(h.model, again);
+  }
+
+  // Two boxes sharing the edge x = 0 that the ray runs into at t = 9: `low` has the lower
+  // index, `high` sits in the subtree the traversal enters first (the same entry t, an
+  // earlier child slot), with fillers that split the trees between them. Layout 0 separates
+  // them along x (the octree's first octant), layout 1 along y (the BVH's first child).
+  const Ray ray{{0.0f, 0.0f, -10.0f}, {0.0f, 0.0f, 1.0f}};
+  for (int layout = 0; layout < 2; ++layout) {
+    Scene two;
+    ModelId low, high, filler;
+    d.half_extents = layout == 0 ? vec3{2.0f, 1.0f, 1.0f} : vec3{2.0f, 41.0f, 1.0f};
+    d.transform.position = layout == 0 ? vec3{2.0f, 0.0f, 0.0f} : vec3{2.0f, 40.0f, 0.0f};
+    ASSERT_EQ(two.add_model(d, &low), Status::ok);
+    d.transform.position = layout == 0 ? vec3{-2.0f, 0.0f, 0.0f} : vec3{-2.0f, -40.0f, 0.0f};
+    ASSERT_EQ(two.add_model(d, &high), Status::ok);
+    ModelDef f;
+    f.radius = 1.0f;
+    // Layout 0: fillers far out on both sides along x. Layout 1: three fillers along each
+    // long box, so the BVH makes one leaf of each group.
+    const std::vector<vec3> fillers =
+        layout == 0 ? std::vector<vec3>{{-100, 0, 0}, {-98, 0, 0}, {-96, 0, 0}, {-94, 0, 0}, {92, 0, 0}, {94, 0, 0}, {96, 0, 0}, {98, 0, 0}}
+                    : std::vector<vec3>{{-2, -45, 0}, {-2, -43, 0}, {-2, -41, 0}, {2, 41, 0}, {2, 43, 0}, {2, 45, 0}};
+    for (const vec3& p : fillers) {
+      f.transform.position = p;
+      ASSERT_EQ(two.add_model(f, &filler), Status::ok);
+    }
+    for (const SceneAccel accel : {SceneAccel::bvh, SceneAccel::octree}) {
+      ASSERT_EQ(two.configure({accel, {4, 1}}), Status::ok);
+      const SceneHit h = raycast(two, ray);
+      ASSERT_TRUE(h.hit.hit);
+      EXPECT_EQ(h.hit.t, 9.0f);
+      EXPECT_EQ(h.model, low) << "layout " << layout << (accel == SceneAccel::bvh ? " bvh" : " octree");
+      EXPECT_TRUE(raycast_any(two, ray).hit.hit);
+    }
+    // Both are hit there: each alone gives the same t.
+    for (const ModelId id : {low, high}) {
+      ModelInfo info;
+      ASSERT_EQ(two.model(id, &info), Status::ok);
+      EXPECT_EQ(raycast(info.box, ray).t, 9.0f);
+    }
+  }
+}
+
+TEST(Scene, InstancedMeshRaycastInLocalFrame) {
+  // A unit-cube mesh scaled by 2, turned 90 degrees about y, at x = 10: the ray along +x from
+  // the origin meets its face x = 8 at t = 8 with the normal facing back (-x).
+  auto mesh = std::make_shared<TriangleMesh>();
+  ASSERT_EQ(TriangleMesh::create(make_box_mesh({1.0f, 1.0f, 1.0f}), *mesh), Status::ok);
+  Scene scene;
+  ModelDef d;
+  d.shape = ModelShape::mesh;
+  d.mesh = mesh;
+  d.transform = {{10.0f, 0.0f, 0.0f}, from_axis_angle({0.0f, 1.0f, 0.0f}, kPi / 2.0f), 2.0f};
+  ModelId id;
+  ASSERT_EQ(scene.add_model(d, &id), Status::ok);
+  const SceneHit h = raycast(scene, Ray{{0.0f, 0.25f, 0.0f}, {2.0f, 0.0f, 0.0f}});
+  ASSERT_TRUE(h.hit.hit);
+  EXPECT_NEAR(h.hit.t, 4.0f, 1e-5f);  // t in units of |d| = 2
+  EXPECT_NEAR(h.hit.point.x, 8.0f, 1e-5f);
+  EXPECT_NEAR(h.hit.normal.x, -1.0f, 1e-5f);
+  EXPECT_NEAR(h.hit.normal.y, 0.0f, 1e-5f);
+  EXPECT_LT(h.primitive, 12u);
+  EXPECT_EQ(h.model, id);
+}
+
+// World transforms and shapes against binary64 composition of the parent chains; bounds
+// contain the shapes' exact extents.
+TEST(Scene, WorldPlacementMatchesBinary64) {
+  TestScene s(200, 41);
+  const auto models = snapshot(s.scene);
+  struct D3 {
+    double x, y, z;
+  };
+  struct Dq {
+    double x, y, z, w;
+  };
+  auto qmul = [](Dq a, Dq b) {
+    return Dq{a.w * b.x + a.x * b.w + a.y * b.z - a.z * b.y, a.w * b.y - a.x * b.z + a.y * b.w + a.z * b.x,
+              a.w * b.z + a.x * b.y - a.y * b.x + a.z * b.w, a.w * b.w - a.x * b.x - a.y * b.y - a.z * b.z};
+  };
+  auto rot = [](Dq q, D3 v) {  // q v q*
+    const Dq p = {v.x, v.y, v.z, 0.0};
+    const Dq c = {-q.x, -q.y, -q.z, q.w};
+    auto m = [](Dq a, Dq b) {
+      return Dq{a.w * b.x + a.x * b.w + a.y * b.z - a.z * b.y, a.w * b.y - a.x * b.z + a.y * b.w + a.z * b.x,
+                a.w * b.z + a.x * b.y - a.y * b.x + a.z * b.w, a.w * b.w - a.x * b.x - a.y * b.y - a.z * b.z};
+    };
+    const Dq r = m(m(q, p), c);
+    return D3{r.x, r.y, r.z};
+  };
+  std::size_t chained = 0;
+  for (const Snapshot& m : models) {
+    // Compose from the root down in binary64.
+    std::vector<ModelTransform> chain;
+    for (ModelInfo info = m.info;;) {
+      chain.push_back(info.def.transform);
+      if (info.def.parent.is_null()) break;
+      ASSERT_EQ(s.scene.model(info.def.parent, &info), Status::ok);
+    }
+    chained += chain.size() > 2;
+    D3 p{0, 0, 0};
+    Dq q{0, 0, 0, 1};
+    double sc = 1.0;
+    for (auto it = chain.rbegin(); it != chain.rend(); ++it) {
+      const D3 lp = rot(q, D3{it->position.x * sc, it->position.y * sc, it->position.z * sc});
+      p = {p.x + lp.x, p.y + lp.y, p.z + lp.z};
+      const Dq r{it->rotation.x, it->rotation.y, it->rotation.z, it->rotation.w};
+      q = qmul(q, r);
+      sc *= it->scale;
+    }
+    const double mag = 100.0;
+    EXPECT_NEAR(m.info.world.position.x, p.x, 1e-5 * mag);
+    EXPECT_NEAR(m.info.world.position.y, p.y, 1e-5 * mag);
+    EXPECT_NEAR(m.info.world.position.z, p.z, 1e-5 * mag);
+    EXPECT_NEAR(m.info.world.scale, sc, 1e-6 * sc);
+    const double same = std::abs(q.x * m.info.world.rotation.x + q.y * m.info.world.rotation.y +
+                                 q.z * m.info.world.rotation.z + q.w * m.info.world.rotation.w);
+    EXPECT_NEAR(same, 1.0, 1e-5);
+    // The world transform is compose() of the local and the parent's world, bit for bit.
+    if (!m.info.def.parent.is_null()) {
+      ModelInfo parent;
+      ASSERT_EQ(s.scene.model(m.info.def.parent, &parent), Status::ok);
+      const ModelTransform w = compose(m.info.def.transform, parent.world);
+      EXPECT_EQ(w.position, m.info.world.position);
+      EXPECT_EQ(w.rotation, m.info.world.rotation);
+      EXPECT_EQ(w.scale, m.info.world.scale);
+    }
+    // The shape's extreme points (in binary64) lie inside the bounds.
+    const vec3 lo = aabb_min(m.info.bounds), hi = aabb_max(m.info.bounds);
+    auto inside = [&](D3 v) {
+      EXPECT_TRUE(lo.x <= v.x && v.x <= hi.x && lo.y <= v.y && v.y <= hi.y && lo.z <= v.z && v.z <= hi.z)
+          << "model " << m.id.index;
+    };
+    const D3 wp{m.info.world.position.x, m.info.world.position.y, m.info.world.position.z};
+    const Dq wq{m.info.world.rotation.x, m.info.world.rotation.y, m.info.world.rotation.z, m.info.world.rotation.w};
+    const double ws = m.info.world.scale;
+    auto place = [&](D3 l) {
+      const D3 r = rot(wq, D3{l.x * ws, l.y * ws, l.z * ws});
+      return D3{r.x + wp.x, r.y + wp.y, r.z + wp.z};
+    };
+    switch (m.info.def.shape) {
+      case ModelShape::sphere: {
+        const double r = double(m.info.def.radius) * ws;
+        for (int a = 0; a < 3; ++a)
+          for (double sg : {-1.0, 1.0}) {
+            D3 v = wp;
+            (a == 0 ? v.x : a == 1 ? v.y : v.z) += sg * r;
+            inside(v);
+          }
+        break;
+      }
+      case ModelShape::box:
+        for (int k = 0; k < 8; ++k) {
+          const vec3 e = m.info.def.half_extents;
+          inside(place(D3{(k & 1 ? 1.0 : -1.0) * e.x, (k & 2 ? 1.0 : -1.0) * e.y, (k & 4 ? 1.0 : -1.0) * e.z}));
+        }
+        break;
+      case ModelShape::mesh:
+        for (std::size_t t = 0; t < m.info.def.mesh->triangle_count(); ++t) {
+          const Triangle tri = m.info.def.mesh->triangle(t);
+          for (const vec3& v : {tri.a, tri.b, tri.c}) inside(place(D3{v.x, v.y, v.z}));
+        }
+        break;
+      case ModelShape::plane:
+        break;
+    }
+  }
+  EXPECT_GT(chained, 3u);  // some chains of three or more
+}
+
+TEST(Scene, TransformHelpersAgreeWithBinary64) {
+  SplitMix64 rng(51);
+  for (int k = 0; k < 200; ++k) {
+    const ModelTransform t = random_transform(rng, 50.0f);
+    const ModelTransform tn{t.position, normalized(t.rotation), t.scale};
+    const vec3 p{uni(rng, -10, 10), uni(rng, -10, 10), uni(rng, -10, 10)};
+    const vec3 w = transform_point(tn, p);
+    // to_local inverts transform_point (the ray's origin), and keeps t: the point at t of the
+    // local ray maps back to the point at t of the world ray.
+    const Ray world{w, {uni(rng, -1, 1), uni(rng, -1, 1), uni(rng, -1, 1)}};
+    const Ray local = to_local(tn, world);
+    EXPECT_NEAR(local.origin.x, p.x, 1e-4f);
+    EXPECT_NEAR(local.origin.y, p.y, 1e-4f);
+    EXPECT_NEAR(local.origin.z, p.z, 1e-4f);
+    const float tt = uni(rng, 0, 5);
+    const vec3 back = transform_point(tn, local.origin + local.direction * tt);
+    const vec3 fwd = world.origin + world.direction * tt;
+    EXPECT_NEAR(back.x, fwd.x, 1e-4f);
+    EXPECT_NEAR(back.y, fwd.y, 1e-4f);
+    EXPECT_NEAR(back.z, fwd.z, 1e-4f);
+    const Sphere ls = to_local(tn, Sphere{w, 3.0f});
+    EXPECT_NEAR(ls.radius, 3.0f / tn.scale, 1e-6f);
+    const OBB lb = to_local(tn, AABB{w, {1.0f, 2.0f, 3.0f}});
+    // The local box's axes are the world axes seen from the model: orthonormal.
+    for (int i = 0; i < 3; ++i) {
+      const vec3 u{lb.orientation.m[i][0], lb.orientation.m[i][1], lb.orientation.m[i][2]};
+      EXPECT_NEAR(dot(u, u), 1.0f, 1e-5f);
+    }
+  }
+}
+
+// Brute force for the overlap and frustum queries over the same exact tests.
+template <class Test> std::vector<ModelId> brute_query(const std::vector<Snapshot>& models, Test&& test) {
+  std::vector<ModelId> out;
+  for (const Snapshot& m : models)
+    if (m.info.placed && test(m)) out.push_back(m.id);
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+bool plane_in_frustum(const Frustum& f, const Plane& p) {
+  vec3 c[8];
+  frustum_corners(f, c);
+  float mag = std::abs(p.distance);
+  for (const vec3& v : c) mag = std::max({mag, std::abs(v.x), std::abs(v.y), std::abs(v.z)});
+  const float tol = 1e-5f * mag + 1e-30f;
+  int above = 0, below = 0;
+  for (const vec3& v : c) above += dot(p.normal, v) - p.distance > tol, below += dot(p.normal, v) - p.distance < -tol;
+  return above != 8 && below != 8;
+}
+
+TEST(Scene, QueriesEqualBruteForceInBothModes) {
+  TestScene s(300, 61);
+  SplitMix64 rng(62);
+  const auto models = snapshot(s.scene);
+  std::size_t found = 0;
+  for (const SceneAccel accel : {SceneAccel::bvh, SceneAccel::octree}) {
+    ASSERT_EQ(s.scene.configure({accel, {5, 4}}), Status::ok);
+    std::vector<ModelId> got;
+    for (int q = 0; q < 60; ++q) {
+      const vec3 c{uni(rng, -60, 60), uni(rng, -60, 60), uni(rng, -60, 60)};
+      const Sphere sphere{c, uni(rng, 0, 15)};
+      ASSERT_EQ(query(s.scene, sphere, got), Status::ok);
+      EXPECT_EQ(got, brute_query(models, [&](const Snapshot& m) {
+                  switch (m.info.def.shape) {
+                    case ModelShape::sphere: return overlaps(sphere, m.info.sphere);
+                    case ModelShape::box: return overlaps(sphere, m.info.box);
+                    case ModelShape::plane: return overlaps(sphere, m.info.plane);
+                    case ModelShape::mesh: return overlaps(*m.info.def.mesh, to_local(m.info.world, sphere));
+                  }
+                  return false;
+                }));
+      found += got.size();
+      const AABB box{c, {uni(rng, 0, 12), uni(rng, 0, 12), uni(rng, 0, 12)}};
+      ASSERT_EQ(query(s.scene, box, got), Status::ok);
+      EXPECT_EQ(got, brute_query(models, [&](const Snapshot& m) {
+                  switch (m.info.def.shape) {
+                    case ModelShape::sphere: return overlaps(box, m.info.sphere);
+                    case ModelShape::box: return overlaps(box, m.info.box);
+                    case ModelShape::plane: return overlaps(box, m.info.plane);
+                    case ModelShape::mesh: return overlaps(*m.info.def.mesh, to_local(m.info.world, box));
+                  }
+                  return false;
+                }));
+      found += got.size();
+      const OBB obb{c, box.half_extents, to_mat3(random_rotation(rng))};
+      ASSERT_EQ(query(s.scene, obb, got), Status::ok);
+      EXPECT_EQ(got, brute_query(models, [&](const Snapshot& m) {
+                  switch (m.info.def.shape) {
+                    case ModelShape::sphere: return overlaps(obb, m.info.sphere);
+                    case ModelShape::box: return overlaps(obb, m.info.box);
+                    case ModelShape::plane: return overlaps(obb, m.info.plane);
+                    case ModelShape::mesh: return overlaps(*m.info.def.mesh, to_local(m.info.world, obb));
+                  }
+                  return false;
+                }));
+      found += got.size();
+      Camera cam = perspective_camera(uni(rng, 0.3, 1.5), uni(rng, 0.5, 2.0), uni(rng, 0.1, 1.0), uni(rng, 20, 120));
+      set_look_at(cam, {uni(rng, -70, 70), uni(rng, -70, 70), uni(rng, -70, 70)}, c, {0.0f, 1.0f, 0.0f});
+      const Frustum f = frustum(cam);
+      ASSERT_EQ(query(s.scene, f, got), Status::ok);
+      EXPECT_EQ(got, brute_query(models, [&](const Snapshot& m) {
+                  switch (m.info.def.shape) {
+                    case ModelShape::sphere: return intersects(f, m.info.sphere);
+                    case ModelShape::box:
+                    case ModelShape::mesh: return intersects(f, m.info.box);
+                    case ModelShape::plane: return plane_in_frustum(f, m.info.plane);
+                  }
+                  return false;
+                }));
+      found += got.size();
+    }
+  }
+  EXPECT_GT(found, 1000u);
+}
+
+TEST(Scene, PickHitsTheModelUnderTheCursor) {
+  Scene scene;
+  ModelDef d;
+  d.radius = 2.0f;
+  d.transform.position = {0.0f, 0.0f, 20.0f};
+  ModelId near_id, far_id;
+  ASSERT_EQ(scene.add_model(d, &near_id), Status::ok);
+  d.transform.position = {0.0f, 0.0f, 40.0f};
+  ASSERT_EQ(scene.add_model(d, &far_id), Status::ok);
+  const Camera cam = perspective_camera(1.0f, 1.5f, 0.5f, 100.0f);
+  SceneHit h;
+  ASSERT_EQ(pick(scene, cam, {300.0f, 200.0f}, {600.0f, 400.0f}, &h), Status::ok);
+  ASSERT_TRUE(h.hit.hit);
+  EXPECT_EQ(h.model, near_id);
+  expect_same(h, raycast(scene, picking_ray(cam, {300.0f, 200.0f}, {600.0f, 400.0f})), 0);
+  ASSERT_EQ(pick(scene, cam, {5.0f, 5.0f}, {600.0f, 400.0f}, &h), Status::ok);
+  EXPECT_FALSE(h.hit.hit);
+  Camera bad = cam;
+  bad.z_far = 0.1f;
+  EXPECT_EQ(pick(scene, bad, {300.0f, 200.0f}, {600.0f, 400.0f}, &h), Status::invalid_argument);
+  EXPECT_EQ(pick(scene, cam, {300.0f, 200.0f}, {0.0f, 400.0f}, &h), Status::invalid_argument);
+  EXPECT_EQ(pick(scene, cam, {std::nanf(""), 200.0f}, {600.0f, 400.0f}, &h), Status::non_finite);
+  EXPECT_EQ(pick(scene, cam, {300.0f, 200.0f}, {600.0f, 400.0f}, nullptr), Status::null_argument);
+}
+
+TEST(Scene, StaleIdsAreRejectedAndChangeNothing) {
+  TestScene s(20, 71);
+  const ModelId gone = s.ids[5];
+  ASSERT_EQ(s.scene.remove_model(gone), Status::ok);
+  EXPECT_FALSE(s.scene.contains(gone));
+  const auto before = snapshot(s.scene);
+  ModelInfo info;
+  EXPECT_EQ(s.scene.model(gone, &info), Status::stale_id);
+  EXPECT_EQ(s.scene.remove_model(gone), Status::stale_id);
+  EXPECT_EQ(s.scene.set_transform(gone, {}), Status::stale_id);
+  EXPECT_EQ(s.scene.set_parent(gone, ModelId{}), Status::stale_id);
+  EXPECT_EQ(s.scene.set_parent(s.ids[0], gone), Status::stale_id);
+  std::vector<ModelId> kids{gone};
+  EXPECT_EQ(s.scene.children(gone, kids), Status::stale_id);
+  EXPECT_TRUE(kids.empty());
+  ModelDef d;
+  d.parent = gone;
+  ModelId id{};
+  EXPECT_EQ(s.scene.add_model(d, &id), Status::stale_id);
+  EXPECT_TRUE(id.is_null());
+  EXPECT_EQ(s.scene.set_transform(ModelId{}, {}), Status::stale_id);
+  // The index comes back with a new generation; the old id stays stale.
+  ASSERT_EQ(s.scene.add_model(ModelDef{}, &id), Status::ok);
+  EXPECT_EQ(id.index, gone.index);
+  EXPECT_NE(id.generation, gone.generation);
+  EXPECT_EQ(s.scene.model(gone, &info), Status::stale_id);
+  ASSERT_EQ(s.scene.remove_model(id), Status::ok);
+  const auto after = snapshot(s.scene);
+  ASSERT_EQ(after.size(), before.size());
+  for (std::size_t i = 0; i < after.size(); ++i) {
+    EXPECT_EQ(after[i].id, before[i].id);
+    EXPECT_EQ(after[i].info.world.position, before[i].info.world.position);
+  }
+}
+
+TEST(Scene, RemovingAParentLeavesItsChildrenInPlace) {
+  Scene scene;
+  ModelDef d;
+  d.transform = {{5.0f, 0.0f, 0.0f}, from_axis_angle({0.0f, 0.0f, 1.0f}, 0.7f), 2.0f};
+  ModelId root, child, grandchild;
+  ASSERT_EQ(scene.add_model(d, &root), Status::ok);
+  d.transform = {{1.0f, 2.0f, 0.0f}, from_axis_angle({1.0f, 0.0f, 0.0f}, 0.3f), 1.0f};
+  d.parent = root;
+  ASSERT_EQ(scene.add_model(d, &child), Status::ok);
+  d.parent = child;
+  ASSERT_EQ(scene.add_model(d, &grandchild), Status::ok);
+  std::vector<ModelId> kids;
+  ASSERT_EQ(scene.children(root, kids), Status::ok);
+  EXPECT_EQ(kids, std::vector<ModelId>{child});
+  ModelInfo c0, g0, c1, g1;
+  ASSERT_EQ(scene.model(child, &c0), Status::ok);
+  ASSERT_EQ(scene.model(grandchild, &g0), Status::ok);
+  // Moving the root moves the descendants.
+  ASSERT_EQ(scene.set_transform(root, {{6.0f, 0.0f, 0.0f}, from_axis_angle({0.0f, 0.0f, 1.0f}, 0.7f), 2.0f}), Status::ok);
+  ASSERT_EQ(scene.model(grandchild, &g1), Status::ok);
+  EXPECT_NEAR(g1.world.position.x - g0.world.position.x, 1.0f, 1e-5f);
+  ASSERT_EQ(scene.set_transform(root, {{5.0f, 0.0f, 0.0f}, from_axis_angle({0.0f, 0.0f, 1.0f}, 0.7f), 2.0f}), Status::ok);
+  ASSERT_EQ(scene.remove_model(root), Status::ok);
+  ASSERT_EQ(scene.model(child, &c1), Status::ok);
+  ASSERT_EQ(scene.model(grandchild, &g1), Status::ok);
+  EXPECT_TRUE(c1.def.parent.is_null());
+  EXPECT_EQ(g1.def.parent, child);
+  EXPECT_EQ(c1.world.position, c0.world.position);
+  EXPECT_EQ(c1.world.rotation, c0.world.rotation);
+  EXPECT_EQ(c1.world.scale, c0.world.scale);
+  EXPECT_EQ(g1.world.position, g0.world.position);
+}
+
+TEST(Scene, BadInputGetsAStatusAndChangesNothing) {
+  TestScene s(30, 81);
+  const auto before = snapshot(s.scene);
+  auto unchanged = [&] {
+    const auto now = snapshot(s.scene);
+    ASSERT_EQ(now.size(), before.size());
+    for (std::size_t i = 0; i < now.size(); ++i) {
+      EXPECT_EQ(now[i].id, before[i].id);
+      EXPECT_EQ(now[i].info.def.parent, before[i].info.def.parent);
+      EXPECT_EQ(now[i].info.world.position, before[i].info.world.position);
+      EXPECT_EQ(now[i].info.world.rotation, before[i].info.world.rotation);
+    }
+  };
+  const float nan = std::nanf("");
+  ModelId id{};
+  ModelDef d;
+  d.transform.position.y = nan;
+  EXPECT_EQ(s.scene.add_model(d, &id), Status::non_finite);
+  EXPECT_NE(std::string(last_error()).find("position"), std::string::npos);
+  d = {};
+  d.transform.rotation = {0.0f, 0.0f, 0.0f, 0.0f};
+  EXPECT_EQ(s.scene.add_model(d, &id), Status::invalid_argument);
+  d = {};
+  d.transform.rotation.x = kInf;
+  EXPECT_EQ(s.scene.add_model(d, &id), Status::non_finite);
+  d = {};
+  d.transform.scale = 0.0f;
+  EXPECT_EQ(s.scene.add_model(d, &id), Status::invalid_argument);
+  d.transform.scale = nan;
+  EXPECT_EQ(s.scene.add_model(d, &id), Status::non_finite);
+  d = {};
+  d.radius = -1.0f;
+  EXPECT_EQ(s.scene.add_model(d, &id), Status::invalid_argument);
+  d = {};
+  d.shape = ModelShape::box;
+  d.half_extents.z = -0.5f;
+  EXPECT_EQ(s.scene.add_model(d, &id), Status::invalid_argument);
+  d = {};
+  d.shape = ModelShape::mesh;
+  EXPECT_EQ(s.scene.add_model(d, &id), Status::null_argument);
+  d.mesh = std::make_shared<TriangleMesh>();
+  EXPECT_EQ(s.scene.add_model(d, &id), Status::invalid_argument);
+  d = {};
+  d.shape = ModelShape::plane;
+  d.plane.normal = {0.0f, 2.0f, 0.0f};
+  EXPECT_EQ(s.scene.add_model(d, &id), Status::invalid_argument);
+  d = {};
+  d.shape = static_cast<ModelShape>(9);
+  EXPECT_EQ(s.scene.add_model(d, &id), Status::invalid_argument);
+  EXPECT_EQ(s.scene.add_model(ModelDef{}, nullptr), Status::null_argument);
+  EXPECT_TRUE(id.is_null());
+  ModelTransform t;
+  t.position.x = nan;
+  EXPECT_EQ(s.scene.set_transform(s.ids[3], t), Status::non_finite);
+  t = {};
+  t.scale = -2.0f;
+  EXPECT_EQ(s.scene.set_transform(s.ids[3], t), Status::invalid_argument);
+  // A cycle of parents: 0 <- 1 <- 2, then 0's parent = 2 (and a model as its own parent).
+  ASSERT_EQ(s.scene.set_parent(s.ids[1], s.ids[0]), Status::ok);
+  ASSERT_EQ(s.scene.set_parent(s.ids[2], s.ids[1]), Status::ok);
+  const auto chained = snapshot(s.scene);
+  EXPECT_EQ(s.scene.set_parent(s.ids[0], s.ids[2]), Status::invalid_argument);
+  EXPECT_NE(std::string(last_error()).find("cycle"), std::string::npos);
+  EXPECT_EQ(s.scene.set_parent(s.ids[4], s.ids[4]), Status::invalid_argument);
+  EXPECT_EQ(snapshot(s.scene).size(), chained.size());
+  ModelInfo info;
+  ASSERT_EQ(s.scene.model(s.ids[0], &info), Status::ok);
+  EXPECT_TRUE(info.def.parent.is_null());
+  ASSERT_EQ(s.scene.set_parent(s.ids[2], ModelId{}), Status::ok);
+  ASSERT_EQ(s.scene.set_parent(s.ids[1], ModelId{}), Status::ok);
+  unchanged();
+  EXPECT_EQ(s.scene.model(s.ids[0], nullptr), Status::null_argument);
+  SceneSettings bad;
+  bad.octree.max_depth = 99;
+  EXPECT_EQ(s.scene.configure(bad), Status::invalid_argument);
+  bad = {};
+  bad.accel = static_cast<SceneAccel>(5);
+  EXPECT_EQ(s.scene.configure(bad), Status::invalid_argument);
+  EXPECT_EQ(s.scene.settings().accel, SceneAccel::bvh);
+
+  // Batch calls: bad views and counts write nothing.
+  Rays rays = make_rays(before, 8, 82);
+  Columns c(8);
+  auto untouched = [&] {
+    for (std::size_t i = 0; i < 8; ++i) EXPECT_EQ(c.model[i], (ModelId{9, 9}));
+    for (float v : c.t) EXPECT_EQ(v, -1.0f);
+  };
+  RaysView v = rays.view();
+  v.oy = nullptr;
+  EXPECT_EQ(raycast_closest(s.scene, v, 8, c.out()), Status::null_argument);
+  SceneHitsOut out = c.out();
+  out.model = nullptr;
+  EXPECT_EQ(raycast_closest(s.scene, rays.view(), 8, out), Status::null_argument);
+  out = c.out();
+  out.ny = nullptr;
+  EXPECT_EQ(raycast_any(s.scene, rays.view(), 8, out), Status::null_argument);
+  out = c.out();
+  out.t = nullptr;
+  EXPECT_EQ(raycast_any(s.scene, rays.view(), 8, out), Status::null_argument);
+  EXPECT_EQ(raycast_closest(s.scene, rays.view(), std::size_t(1) << 31, c.out()), Status::invalid_count);
+  untouched();
+  EXPECT_EQ(raycast_closest(s.scene, v, 0, c.out()), Status::ok);  // nothing read
+  untouched();
+  // Bad ray values are flagged per ray; the other rays are answered as alone.
+  Columns alone(8);
+  ASSERT_EQ(raycast_closest(s.scene, rays.view(), 8, alone.out()), Status::ok);
+  rays.set.dx[5] = nan;
+  rays.tmin[2] = -1.0f;
+  rays.tmax[6] = std::nanf("");
+  ASSERT_EQ(raycast_closest(s.scene, rays.view(), 8, c.out()), Status::ok);
+  for (std::size_t i = 0; i < 8; ++i) {
+    if (i == 2 || i == 5 || i == 6) {
+      EXPECT_EQ(c.primitive[i], kRayInvalid);
+      EXPECT_TRUE(c.model[i].is_null());
+      EXPECT_EQ(c.t[i], kInf);
+      EXPECT_EQ(c.nx[i], 0.0f);
+    } else {
+      EXPECT_EQ(c.model[i], alone.model[i]);
+      EXPECT_EQ(bits(c.t[i]), bits(alone.t[i]));
+      EXPECT_EQ(c.primitive[i], alone.primitive[i]);
+    }
+  }
+  // Single rays with NaN, a zero direction or a bad window: a miss, no crash (the same ray
+  // with good values hits).
+  const vec3 target = before[3].info.bounds.center;
+  const Ray good{{0.0f, 0.0f, 0.0f}, target};
+  ASSERT_TRUE(raycast(s.scene, good).hit.hit);
+  EXPECT_FALSE(raycast(s.scene, Ray{{nan, 0.0f, 0.0f}, target}).hit.hit);
+  EXPECT_FALSE(raycast(s.scene, Ray{{0.0f, 0.0f, 0.0f}, {0.0f, 0.0f, 0.0f}}).hit.hit);
+  EXPECT_FALSE(raycast(s.scene, good, -1.0f, 5.0f).hit.hit);
+  EXPECT_FALSE(raycast(s.scene, good, 2.0f, 1.0f).hit.hit);
+  EXPECT_FALSE(raycast_any(s.scene, good, nan, 5.0f).hit.hit);
+  // Queries with bad shapes: a status and an empty result.
+  std::vector<ModelId> got{ModelId{1, 1}};
+  EXPECT_EQ(query(s.scene, Sphere{{0.0f, nan, 0.0f}, 1.0f}, got), Status::non_finite);
+  EXPECT_TRUE(got.empty());
+  EXPECT_EQ(query(s.scene, Sphere{{0.0f, 0.0f, 0.0f}, -1.0f}, got), Status::invalid_argument);
+  EXPECT_EQ(query(s.scene, AABB{{0.0f, 0.0f, 0.0f}, {1.0f, -1.0f, 1.0f}}, got), Status::invalid_argument);
+  OBB obb;
+  obb.orientation.m[1][1] = nan;
+  EXPECT_EQ(query(s.scene, obb, got), Status::non_finite);
+  Frustum f = frustum(perspective_camera(1.0f, 1.0f, 0.1f, 10.0f));
+  f.planes[3].normal.x = nan;
+  EXPECT_EQ(query(s.scene, f, got), Status::non_finite);
+  unchanged();
+}
+
+TEST(Scene, HugeScalesLeaveModelsUnplacedNotBroken) {
+  Scene scene;
+  ModelDef d;
+  d.transform.scale = 1e15f;
+  ModelId a, b;
+  ASSERT_EQ(scene.add_model(d, &a), Status::ok);
+  d.parent = a;
+  d.transform.scale = 1e30f;
+  d.transform.position = {1e10f, 0.0f, 0.0f};
+  ASSERT_EQ(scene.add_model(d, &b), Status::ok);  // world scale 1e45 overflows
+  ModelInfo info;
+  ASSERT_EQ(scene.model(b, &info), Status::ok);
+  EXPECT_FALSE(info.placed);
+  ASSERT_EQ(scene.model(a, &info), Status::ok);
+  EXPECT_TRUE(info.placed);
+  const SceneHit h = raycast(scene, Ray{{0.0f, 0.0f, -2e15f}, {0.0f, 0.0f, 1.0f}});
+  ASSERT_TRUE(h.hit.hit);
+  EXPECT_EQ(h.model, a);
+  std::vector<ModelId> got;
+  ASSERT_EQ(query(scene, Sphere{{0.0f, 0.0f, 0.0f}, 1.0f}, got), Status::ok);
+  EXPECT_EQ(got, std::vector<ModelId>{a});
+  EXPECT_EQ(scene.stats().tree_models, 1u);
+}
+
+// Const queries from several threads on a scene just changed: the first ones rebuild
+// under the lock, and every thread gets the single-threaded answer.
+TEST(Scene, ConcurrentQueriesAfterAChange) {
+  TestScene s(200, 101);
+  const Rays rays = make_rays(snapshot(s.scene), 300, 102);
+  const std::size_t n = rays.set.size();
+  Columns expect(n);
+  ASSERT_EQ(raycast_closest(s.scene, rays.view(), n, expect.out()), Status::ok);
+  std::vector<ModelId> expect_q;
+  ASSERT_EQ(query(s.scene, Sphere{{0.0f, 0.0f, 0.0f}, 30.0f}, expect_q), Status::ok);
+  for (const SceneAccel accel : {SceneAccel::octree, SceneAccel::bvh}) {
+    ASSERT_EQ(s.scene.configure({accel, {}}), Status::ok);  // dirty: the next query rebuilds
+    std::vector<Columns> got(4, Columns(n));
+    std::vector<std::vector<ModelId>> got_q(4);
+    std::vector<Status> st(4, Status::internal);
+    std::vector<std::thread> threads;
+    for (int k = 0; k < 4; ++k)
+      threads.emplace_back([&, k] {
+        st[k] = raycast_closest(s.scene, rays.view(), n, got[k].out());
+        if (st[k] == Status::ok) st[k] = query(s.scene, Sphere{{0.0f, 0.0f, 0.0f}, 30.0f}, got_q[k]);
+      });
+    for (std::thread& t : threads) t.join();
+    for (int k = 0; k < 4; ++k) {
+      EXPECT_EQ(st[k], Status::ok);
+      EXPECT_EQ(got[k].model, expect.model);
+      for (std::size_t i = 0; i < n; ++i) EXPECT_EQ(bits(got[k].t[i]), bits(expect.t[i]));
+      EXPECT_EQ(got_q[k], expect_q);
+    }
+  }
+}
+
+TEST(Scene, EmptyScene) {
+  Scene scene;
+  EXPECT_FALSE(raycast(scene, Ray{{0.0f, 0.0f, 0.0f}, {1.0f, 0.0f, 0.0f}}).hit.hit);
+  std::vector<ModelId> got;
+  EXPECT_EQ(query(scene, Sphere{{0.0f, 0.0f, 0.0f}, 100.0f}, got), Status::ok);
+  EXPECT_TRUE(got.empty());
+  ASSERT_EQ(scene.configure({SceneAccel::octree, {}}), Status::ok);
+  EXPECT_FALSE(raycast_any(scene, Ray{{0.0f, 0.0f, 0.0f}, {1.0f, 0.0f, 0.0f}}).hit.hit);
+  EXPECT_EQ(scene.stats().models, 0u);
+}
+
+// Timings of the two structures on scenes of a few thousand models (not run by default:
+// gyro_tests --gtest_also_run_disabled_tests --gtest_filter='SceneBench*'). "dense" keeps
+// the models in the 100-unit cube of the tests; "sparse" grows the cube with the count so
+// the density stays that of 300 models.
+TEST(SceneBench, DISABLED_OctreeVersusBvh) {
+  using clock = std::chrono::steady_clock;
+  auto ms = [](clock::duration d) { return std::chrono::duration<double, std::milli>(d).count(); };
+  for (const std::size_t n : {1000u, 4000u})
+    for (const bool sparse : {false, true}) {
+      const float spread = sparse ? 50.0f * std::cbrt(float(n) / 300.0f) : 50.0f;
+      TestScene s(n, 91, spread);
+      Rays rays = make_rays(snapshot(s.scene), 100000, 92);
+      std::vector<Frustum> frusta;
+      std::vector<Sphere> spheres;
+      SplitMix64 rng(93);
+      for (int q = 0; q < 2000; ++q) {
+        Camera cam = perspective_camera(1.0f, 1.5f, 0.5f, spread);
+        set_look_at(cam, {uni(rng, -1.4 * spread, 1.4 * spread), uni(rng, -1.4 * spread, 1.4 * spread), uni(rng, -1.4 * spread, 1.4 * spread)},
+                    {0.0f, 0.0f, 0.0f}, {0.0f, 1.0f, 0.0f});
+        frusta.push_back(frustum(cam));
+        spheres.push_back({{uni(rng, -spread, spread), uni(rng, -spread, spread), uni(rng, -spread, spread)}, uni(rng, 1, 10)});
+      }
+      const SceneSettings modes[] = {{SceneAccel::bvh, {}}, {SceneAccel::octree, {5, 16}}, {SceneAccel::octree, {6, 8}},
+                                     {SceneAccel::octree, {4, 8}}};
+      for (const SceneSettings& mode : modes) {
+        ASSERT_EQ(s.scene.configure(mode), Status::ok);
+        double build = 1e30;
+        for (int rep = 0; rep < 5; ++rep) {
+          ASSERT_EQ(s.scene.set_transform(s.ids[0], {}), Status::ok);  // dirty
+          const auto t0 = clock::now();
+          s.scene.prepare();
+          build = std::min(build, ms(clock::now() - t0));
+        }
+        Columns c(rays.set.size());
+        auto t0 = clock::now();
+        ASSERT_EQ(raycast_closest(s.scene, rays.view(), rays.set.size(), c.out()), Status::ok);
+        const double closest = ms(clock::now() - t0);
+        std::size_t hits = 0;
+        for (const ModelId& id : c.model) hits += !id.is_null();
+        t0 = clock::now();
+        ASSERT_EQ(raycast_any(s.scene, rays.view(), rays.set.size(), c.out()), Status::ok);
+        const double any = ms(clock::now() - t0);
+        std::vector<ModelId> got;
+        std::size_t found_s = 0, found_f = 0;
+        t0 = clock::now();
+        for (const Sphere& q : spheres) {
+          ASSERT_EQ(query(s.scene, q, got), Status::ok);
+          found_s += got.size();
+        }
+        const double sq = ms(clock::now() - t0);
+        t0 = clock::now();
+        for (const Frustum& f : frusta) {
+          ASSERT_EQ(query(s.scene, f, got), Status::ok);
+          found_f += got.size();
+        }
+        const double fq = ms(clock::now() - t0);
+        const SceneStats st = s.scene.stats();
+        char name[32];
+        std::snprintf(name, sizeof name, mode.accel == SceneAccel::bvh ? "bvh" : "octree(%d,%d)", int(mode.octree.max_depth),
+                      int(mode.octree.leaf_capacity));
+        std::printf("%5zu %-6s %-12s build %6.2f ms | 100k rays: closest %7.1f ms, any %6.1f ms (%zu hits) | 2000 spheres"
+                    " %6.1f ms (%zu) | 2000 frusta %7.1f ms (%zu) | nodes %zu refs %zu\n",
+                    n, sparse ? "sparse" : "dense", name, build, closest, any, hits, sq, found_s, fq, found_f, st.nodes,
+                    st.references);
+      }
+    }
+}
+
+}  // namespace
+}  // namespace gyro
