@@ -348,6 +348,102 @@ GYRO_API gyro_status gyro_camera_frustum(const gyro_camera* camera, gyro_frustum
 GYRO_API gyro_status gyro_frustum_cull(const gyro_frustum* frustum, const gyro_shape_soa* shapes, int32_t count,
                                        uint32_t* visible);
 
+
+/* ------------------------------------------------------------------ scenes */
+
+/** A set of models (spheres, boxes, planes, instanced meshes) placed by transforms and
+ *  parents, under a BVH (default) or the Cookbook's octree. Conventions of gyro/scene.hpp. */
+typedef struct gyro_scene gyro_scene;
+
+/** A model's id; all-zero is null. A removed model's id is stale (GYRO_STATUS_STALE_ID). */
+typedef struct gyro_model_id {
+  uint32_t index;
+  uint32_t generation;
+} gyro_model_id;
+
+typedef uint32_t gyro_model_shape;
+enum { GYRO_MODEL_SPHERE = 0, GYRO_MODEL_BOX = 1, GYRO_MODEL_MESH = 2, GYRO_MODEL_PLANE = 3 };
+
+typedef uint32_t gyro_scene_accel;
+enum { GYRO_SCENE_BVH = 0, GYRO_SCENE_OCTREE = 1 };
+
+/** Scale, then rotate (unit quaternion x, y, z, w), then translate (row vectors). */
+typedef struct gyro_transform {
+  float position[3];
+  float rotation[4];
+  float scale; /**< uniform, > 0 */
+} gyro_transform;
+
+typedef struct gyro_model_def {
+  uint32_t struct_size; /**< sizeof(gyro_model_def): set by gyro_model_def_default */
+  gyro_model_shape shape;
+  float radius;          /**< sphere */
+  float half_extents[3]; /**< box */
+  float plane[4];        /**< plane: unit normal nx, ny, nz and d (dot(n, p) = d), in the model's frame */
+  const gyro_mesh* mesh; /**< mesh: the scene keeps its own reference */
+  gyro_transform transform; /**< relative to the parent (the world for a root) */
+  gyro_model_id parent;     /**< null: a root */
+} gyro_model_def;
+
+/** A unit sphere at the origin, identity transform, no parent. */
+GYRO_API gyro_model_def gyro_model_def_default(void);
+
+GYRO_API gyro_status gyro_scene_create(gyro_scene_accel accel, gyro_scene** out);
+GYRO_API void gyro_scene_destroy(gyro_scene* scene);
+/** Errors change nothing: NULL_ARGUMENT, NON_FINITE, INVALID_ARGUMENT (negative size, zero
+ *  rotation, scale <= 0, plane normal not unit, unknown shape, a parent cycle), STALE_ID. */
+GYRO_API gyro_status gyro_scene_add_model(gyro_scene* scene, const gyro_model_def* def, gyro_model_id* out);
+GYRO_API gyro_status gyro_scene_remove_model(gyro_scene* scene, gyro_model_id id);
+GYRO_API gyro_status gyro_scene_set_transform(gyro_scene* scene, gyro_model_id id, const gyro_transform* local);
+/** A null parent detaches the model; its local transform is kept. */
+GYRO_API gyro_status gyro_scene_set_parent(gyro_scene* scene, gyro_model_id id, gyro_model_id parent);
+GYRO_API int32_t gyro_scene_model_count(const gyro_scene* scene);
+
+/** Per-ray scene results: t and model required, the rest optional (NULL to skip; normal
+ *  all three or none, u and v both or none). primitive: the triangle for mesh models, 0 for
+ *  other shapes, -1 for a miss, GYRO_RAY_INVALID for a ray that cannot be answered. */
+typedef struct gyro_scene_hit_soa {
+  float* t;
+  gyro_model_id* model;
+  int32_t* primitive;
+  float* nx;
+  float* ny;
+  float* nz;
+  float* u;
+  float* v;
+} gyro_scene_hit_soa;
+
+/** Closest hit of every ray: the brute-force answer over every model (ties to the lower id
+ *  index), the same bits in both acceleration modes, at every SIMD level and thread count. */
+GYRO_API gyro_status gyro_scene_raycast_closest(const gyro_scene* scene, const gyro_ray_soa* rays, int32_t ray_count,
+                                                const gyro_scene_hit_soa* hits);
+/** Any hit (occlusion, line of sight). */
+GYRO_API gyro_status gyro_scene_raycast_any(const gyro_scene* scene, const gyro_ray_soa* rays, int32_t ray_count,
+                                            const gyro_scene_hit_soa* hits);
+
+/** Models overlapping shape 0 of `shape` (a sphere, AABB or OBB), ascending ids. The first
+ *  min(*count, capacity) are written to out; *count gets how many there are. */
+GYRO_API gyro_status gyro_scene_query(const gyro_scene* scene, const gyro_shape_soa* shape, gyro_model_id* out,
+                                      int32_t capacity, int32_t* count);
+/** Models whose bounding volume intersects the frustum, ascending ids (as gyro_scene_query). */
+GYRO_API gyro_status gyro_scene_query_frustum(const gyro_scene* scene, const gyro_frustum* frustum, gyro_model_id* out,
+                                              int32_t capacity, int32_t* count);
+
+typedef struct gyro_scene_hit {
+  uint32_t hit; /**< 1 for a hit; 0 and the rest zero otherwise */
+  float t;
+  float point[3];
+  float normal[3];
+  gyro_model_id model;
+  int32_t primitive;
+  float u;
+  float v;
+} gyro_scene_hit;
+
+/** The closest model under a screen point (pixels, origin top-left, y down). */
+GYRO_API gyro_status gyro_scene_pick(const gyro_scene* scene, const gyro_camera* camera, float screen_x, float screen_y,
+                                     float viewport_width, float viewport_height, gyro_scene_hit* out);
+
 #ifdef __cplusplus
 }
 #endif

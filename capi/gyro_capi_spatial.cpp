@@ -2,6 +2,7 @@
 #define GYRO_BUILDING 1
 #include "gyro.h"
 
+#include "capi_handles.hpp"
 #include "capi_support.hpp"
 #include "core/validate.hpp"
 #include "gyro/camera.hpp"
@@ -12,15 +13,10 @@
 #include <cstring>
 #include <memory>
 
-// The opaque handle: a shared reference, so scenes can keep a mesh alive after the caller
-// destroys its handle.
-struct gyro_mesh {
-  std::shared_ptr<const gyro::TriangleMesh> mesh;
-};
-
 namespace {
 
 using gyro::Status;
+using gyro::capi::camera_of;
 using gyro::capi::check_count;
 using gyro::capi::guarded;
 using gyro::capi::require;
@@ -35,21 +31,6 @@ Status make_mesh(const gyro::MeshData& data, gyro_mesh** out) {
   auto mesh = std::make_shared<gyro::TriangleMesh>();
   GYRO_TRY(gyro::TriangleMesh::create(data, *mesh));
   *out = new gyro_mesh{std::move(mesh)};
-  return Status::ok;
-}
-
-Status camera_of(const gyro_camera* c, gyro::Camera& out) {
-  GYRO_TRY(require(c, "camera"));
-  gyro::Camera cam;
-  cam.position = {c->position[0], c->position[1], c->position[2]};
-  for (int r = 0; r < 3; ++r)
-    for (int k = 0; k < 3; ++k) cam.orientation.m[r][k] = c->orientation[3 * r + k];
-  if (c->mode > GYRO_PROJECTION_ORTHOGRAPHIC) return fail(Status::invalid_argument, "camera->mode = %u is unknown", c->mode);
-  cam.mode = c->mode == GYRO_PROJECTION_PERSPECTIVE ? gyro::ProjectionMode::perspective : gyro::ProjectionMode::orthographic;
-  cam.fov_y = c->fov_y, cam.aspect = c->aspect, cam.width = c->width, cam.height = c->height;
-  cam.z_near = c->z_near, cam.z_far = c->z_far;
-  GYRO_TRY(gyro::check_camera(cam));
-  out = cam;
   return Status::ok;
 }
 
@@ -84,6 +65,24 @@ Status mesh_raycast(const gyro_mesh* mesh, const gyro_ray_soa* rays, int32_t ray
 }
 
 }  // namespace
+
+namespace gyro::capi {
+Status camera_of(const gyro_camera* c, Camera& out) {
+  GYRO_TRY(require(c, "camera"));
+  gyro::Camera cam;
+  cam.position = {c->position[0], c->position[1], c->position[2]};
+  for (int r = 0; r < 3; ++r)
+    for (int k = 0; k < 3; ++k) cam.orientation.m[r][k] = c->orientation[3 * r + k];
+  if (c->mode > GYRO_PROJECTION_ORTHOGRAPHIC) return detail::fail(Status::invalid_argument, "camera->mode = %u is unknown", c->mode);
+  cam.mode = c->mode == GYRO_PROJECTION_PERSPECTIVE ? gyro::ProjectionMode::perspective : gyro::ProjectionMode::orthographic;
+  cam.fov_y = c->fov_y, cam.aspect = c->aspect, cam.width = c->width, cam.height = c->height;
+  cam.z_near = c->z_near, cam.z_far = c->z_far;
+  GYRO_TRY(gyro::check_camera(cam));
+  out = cam;
+  return Status::ok;
+}
+
+}  // namespace gyro::capi
 
 extern "C" {
 

@@ -135,10 +135,102 @@ static void test_camera_and_frustum(void) {
   CHECK(gyro_frustum_from_matrix(vp, &fr) == GYRO_STATUS_NON_FINITE);
 }
 
+
+static void test_scene(gyro_scene_accel accel) {
+  gyro_mesh_def mdef = gyro_mesh_def_default();
+  gyro_mesh* cube_mesh = NULL;
+  gyro_scene* scene = NULL;
+  gyro_model_def def = gyro_model_def_default();
+  gyro_model_id sphere, box, inst, plane, stale, ids[8];
+  gyro_transform tr;
+  float ox[5] = {0, 3, -3, 0, 0}, oy[5] = {0, 0, 0, 0, NAN}, oz[5] = {0, 0, 0, 0, 0};
+  float dx[5] = {0, 0, 0, 0, 0}, dy[5] = {0, 0, 0, -1, 0}, dz[5] = {1, 1, 1, 0, 1};
+  float t[5], u[5], v[5];
+  gyro_model_id model[5];
+  int32_t prim[5], count = -1;
+  gyro_ray_soa rays;
+  gyro_scene_hit_soa hits;
+  float cx = 0, cy = 0, cz = 5, r = 1.5f;
+  gyro_shape_soa query;
+  gyro_camera cam = gyro_camera_perspective(1.0f, 1.0f, 0.1f, 100.0f);
+  gyro_scene_hit picked;
+  gyro_frustum fr;
+  mdef.x = vx, mdef.y = vy, mdef.z = vz, mdef.vertex_count = 8, mdef.indices = cube, mdef.triangle_count = 12;
+  CHECK(gyro_mesh_create(&mdef, &cube_mesh) == GYRO_OK);
+  CHECK(gyro_scene_create(accel, &scene) == GYRO_OK);
+  CHECK(gyro_scene_create(7, &scene) == GYRO_STATUS_INVALID_ARGUMENT);
+  CHECK(sizeof(gyro_model_def) == 88 && sizeof(gyro_transform) == 32 && sizeof(gyro_scene_hit) == 52);
+
+  def.transform.position[2] = 5; /* unit sphere at (0, 0, 5) */
+  CHECK(gyro_scene_add_model(scene, &def, &sphere) == GYRO_OK && sphere.generation != 0);
+  def.shape = GYRO_MODEL_BOX, def.transform.position[0] = 3; /* unit box at (3, 0, 5) */
+  CHECK(gyro_scene_add_model(scene, &def, &box) == GYRO_OK);
+  def.shape = GYRO_MODEL_MESH, def.mesh = cube_mesh, def.transform.position[0] = -3, def.transform.scale = 0.5f;
+  CHECK(gyro_scene_add_model(scene, &def, &inst) == GYRO_OK);
+  gyro_mesh_destroy(cube_mesh); /* the scene keeps its own reference */
+  def = gyro_model_def_default();
+  def.shape = GYRO_MODEL_PLANE, def.plane[3] = -2; /* y = -2 */
+  CHECK(gyro_scene_add_model(scene, &def, &plane) == GYRO_OK);
+  CHECK(gyro_scene_model_count(scene) == 4);
+
+  /* bad models change nothing */
+  def = gyro_model_def_default();
+  def.radius = -1;
+  CHECK(gyro_scene_add_model(scene, &def, &stale) == GYRO_STATUS_INVALID_ARGUMENT);
+  def.radius = 1, def.transform.scale = 0;
+  CHECK(gyro_scene_add_model(scene, &def, &stale) == GYRO_STATUS_INVALID_ARGUMENT);
+  def.transform.scale = 1, def.transform.position[1] = NAN;
+  CHECK(gyro_scene_add_model(scene, &def, &stale) == GYRO_STATUS_NON_FINITE);
+  def.transform.position[1] = 0, def.shape = GYRO_MODEL_MESH, def.mesh = NULL;
+  CHECK(gyro_scene_add_model(scene, &def, &stale) == GYRO_STATUS_NULL_ARGUMENT);
+  CHECK(gyro_scene_model_count(scene) == 4);
+  CHECK(gyro_scene_set_parent(scene, sphere, sphere) == GYRO_STATUS_INVALID_ARGUMENT);
+
+  rays.ox = ox, rays.oy = oy, rays.oz = oz, rays.dx = dx, rays.dy = dy, rays.dz = dz, rays.tmin = NULL, rays.tmax = NULL;
+  hits.t = t, hits.model = model, hits.primitive = prim, hits.nx = hits.ny = hits.nz = NULL, hits.u = u, hits.v = v;
+  CHECK(gyro_scene_raycast_closest(scene, &rays, 5, &hits) == GYRO_OK);
+  CHECK(t[0] == 4.0f && model[0].index == sphere.index && prim[0] == 0);
+  CHECK(t[1] == 4.0f && model[1].index == box.index);
+  CHECK(t[2] == 4.5f && model[2].index == inst.index && prim[2] >= 0 && prim[2] < 12);
+  CHECK(t[3] == 2.0f && model[3].index == plane.index);
+  CHECK(prim[4] == GYRO_RAY_INVALID && model[4].index == 0 && model[4].generation == 0);
+  CHECK(gyro_scene_raycast_any(scene, &rays, 5, &hits) == GYRO_OK);
+  CHECK(prim[0] >= 0 && prim[4] == GYRO_RAY_INVALID);
+
+  /* queries */
+  query.type = GYRO_SHAPE_SPHERE, query.reserved = 0;
+  query.as.sphere.cx = &cx, query.as.sphere.cy = &cy, query.as.sphere.cz = &cz, query.as.sphere.r = &r;
+  CHECK(gyro_scene_query(scene, &query, ids, 8, &count) == GYRO_OK && count == 1 && ids[0].index == sphere.index);
+  cx = 0.5f, r = 1.6f; /* reaches the box (x >= 2), not the mesh (x <= -2.5) nor the plane (y = -2) */
+  CHECK(gyro_scene_query(scene, &query, ids, 1, &count) == GYRO_OK && count == 2 && ids[0].index == sphere.index);
+  CHECK(gyro_scene_query(scene, &query, NULL, 0, &count) == GYRO_OK && count == 2);
+
+  /* the camera at the origin looks down +z: the sphere is in the middle of the screen */
+  CHECK(gyro_scene_pick(scene, &cam, 320, 240, 640, 480, &picked) == GYRO_OK);
+  CHECK(picked.hit == 1 && picked.model.index == sphere.index && fabsf(picked.t - 3.9f) < 1e-3f);
+  CHECK(gyro_camera_frustum(&cam, &fr) == GYRO_OK);
+  CHECK(gyro_scene_query_frustum(scene, &fr, ids, 8, &count) == GYRO_OK && count == 4); /* plane crosses it */
+
+  /* transforms, removal, stale ids */
+  memset(&tr, 0, sizeof tr);
+  tr.position[2] = 10, tr.rotation[3] = 1, tr.scale = 1;
+  CHECK(gyro_scene_set_transform(scene, sphere, &tr) == GYRO_OK);
+  CHECK(gyro_scene_raycast_closest(scene, &rays, 1, &hits) == GYRO_OK && t[0] == 9.0f);
+  CHECK(gyro_scene_remove_model(scene, sphere) == GYRO_OK);
+  CHECK(gyro_scene_remove_model(scene, sphere) == GYRO_STATUS_STALE_ID);
+  CHECK(gyro_scene_set_transform(scene, sphere, &tr) == GYRO_STATUS_STALE_ID);
+  CHECK(gyro_scene_raycast_closest(scene, &rays, 1, &hits) == GYRO_OK && prim[0] == -1 && t[0] == INFINITY);
+  CHECK(gyro_scene_model_count(scene) == 3);
+  gyro_scene_destroy(scene);
+  gyro_scene_destroy(NULL);
+}
+
 int main(void) {
   test_mesh();
   test_obj();
   test_camera_and_frustum();
+  test_scene(GYRO_SCENE_BVH);
+  test_scene(GYRO_SCENE_OCTREE);
   if (failures) {
     fprintf(stderr, "%d checks failed\n", failures);
     return 1;
