@@ -9,6 +9,8 @@
 #if defined(GYRO_HAS_SPATIAL)
 #include "gyro/camera.hpp"
 #include "gyro/frustum.hpp"
+#include "gyro/mesh.hpp"
+#include "gyro/scene.hpp"
 #include "gyro/triangle_mesh.hpp"
 #include "spatial/bvh.hpp"
 #endif
@@ -253,6 +255,91 @@ uint64_t scene_mesh_bvh() {
   return h.digest();
 }
 
+// A scene of spheres, boxes, instanced meshes (scaled, rotated, some parented) and two
+// planes, in both acceleration modes: batch closest and any hits with model ids, normals
+// and barycentrics, and sphere, AABB and frustum queries; then after removes and moves.
+uint64_t scene_models() {
+  static const std::vector<std::shared_ptr<const TriangleMesh>> meshes = [] {
+    std::vector<std::shared_ptr<const TriangleMesh>> out;
+    for (const MeshData& m : {make_box_mesh({1.0f, 0.5f, 2.0f}), make_sphere_mesh(1.5f, 8, 12)}) {
+      auto t = std::make_shared<TriangleMesh>();
+      if (TriangleMesh::create(m, *t) != Status::ok) return out;
+      out.push_back(t);
+    }
+    return out;
+  }();
+  if (meshes.size() != 2) return 0;
+  static const RaySet rays = [] {
+    RaySet r;
+    SplitMix64 rng(41);
+    for (int i = 0; i < 3000; ++i)
+      r.push(float(80 * rng.u() - 40), float(80 * rng.u() - 40), float(80 * rng.u() - 40), float(rng.u() - 0.5),
+             float(rng.u() - 0.5), float(rng.u() - 0.5));
+    return r;
+  }();
+  detail::StateHasher h;
+  for (SceneAccel accel : {SceneAccel::bvh, SceneAccel::octree}) {
+    SceneSettings settings;
+    settings.accel = accel;
+    Scene scene(settings);
+    SplitMix64 rng(42);
+    std::vector<ModelId> ids;
+    for (int i = 0; i < 400; ++i) {
+      ModelDef d;
+      d.shape = ModelShape(i % 3);
+      d.radius = float(0.2 + 2 * rng.u());
+      d.half_extents = {float(0.1 + rng.u()), float(0.1 + 2 * rng.u()), float(0.1 + rng.u())};
+      if (d.shape == ModelShape::mesh) d.mesh = meshes[i % 2];
+      d.transform.position = {float(60 * rng.u() - 30), float(60 * rng.u() - 30), float(60 * rng.u() - 30)};
+      d.transform.rotation = from_axis_angle({float(rng.u() - 0.5), float(rng.u()), float(rng.u() - 0.5)}, float(6 * rng.u()));
+      d.transform.scale = float(0.5 + rng.u());
+      if (i % 7 == 6) d.parent = ids[std::size_t(rng.next() % ids.size())], d.transform.position = d.transform.position * 0.1f;
+      ModelId id;
+      if (scene.add_model(d, &id) != Status::ok) return 0;
+      ids.push_back(id);
+    }
+    ModelDef plane;
+    plane.shape = ModelShape::plane;
+    plane.plane = {{0.0f, 1.0f, 0.0f}, -35.0f};
+    ModelId pid;
+    if (scene.add_model(plane, &pid) != Status::ok) return 0;
+    for (int round = 0; round < 2; ++round) {
+      std::vector<float> t(rays.size()), nx(rays.size()), ny(rays.size()), nz(rays.size()), u(rays.size()), v(rays.size());
+      std::vector<ModelId> model(rays.size());
+      std::vector<int32_t> prim(rays.size());
+      const SceneHitsOut out{t.data(), model.data(), prim.data(), nx.data(), ny.data(), nz.data(), u.data(), v.data()};
+      if (raycast_closest(scene, rays.view(), rays.size(), out) != Status::ok) return 0;
+      h.add_floats(t), h.add_floats(nx), h.add_floats(ny), h.add_floats(nz), h.add_floats(u), h.add_floats(v);
+      for (std::size_t i = 0; i < rays.size(); ++i) h.add_u32(model[i].index), h.add_u32(uint32_t(prim[i]));
+      if (raycast_any(scene, rays.view(), rays.size(), SceneHitsOut{t.data(), model.data(), prim.data()}) != Status::ok)
+        return 0;
+      for (std::size_t i = 0; i < rays.size(); ++i) h.add_u32(prim[i] >= -1 ? uint32_t(prim[i] >= 0) : 2u);
+      std::vector<ModelId> found;
+      if (query(scene, Sphere{{1.0f, 2.0f, 3.0f}, 12.0f}, found) != Status::ok) return 0;
+      for (ModelId id : found) h.add_u32(id.index);
+      if (query(scene, AABB{{-5.0f, 0.0f, 5.0f}, {9.0f, 4.0f, 7.0f}}, found) != Status::ok) return 0;
+      for (ModelId id : found) h.add_u32(id.index);
+      Camera cam = perspective_camera(1.0f, 1.3f, 0.5f, 60.0f);
+      set_look_at(cam, {0.0f, 5.0f, -45.0f}, {0.0f, 0.0f, 0.0f}, {0.0f, 1.0f, 0.0f});
+      if (query(scene, frustum(cam), found) != Status::ok) return 0;
+      for (ModelId id : found) h.add_u32(id.index);
+      // Round 2: every fifth model removed, every third moved.
+      for (std::size_t i = 0; i < ids.size() && round == 0; ++i) {
+        if (i % 5 == 0) {
+          if (scene.remove_model(ids[i]) != Status::ok) return 0;
+        } else if (i % 3 == 0) {
+          ModelInfo info;
+          if (scene.model(ids[i], &info) != Status::ok) return 0;
+          ModelTransform tr = info.def.transform;
+          tr.position = tr.position + vec3{1.5f, -0.5f, 0.25f};
+          if (scene.set_transform(ids[i], tr) != Status::ok) return 0;
+        }
+      }
+    }
+  }
+  return h.digest();
+}
+
 // A camera's matrices, picking rays and frustum, and batch culling of random spheres,
 // AABBs and OBBs around it.
 uint64_t scene_camera_frustum() {
@@ -299,6 +386,7 @@ const DetScene kScenes[] = {
 #if defined(GYRO_HAS_SPATIAL)
     {"mesh_bvh", scene_mesh_bvh, 0xc14979a18bf9ec7eull},
     {"camera_frustum", scene_camera_frustum, 0x246ff5bf8a6a766cull},
+    {"scene_models", scene_models, 0x822aececbf749a33ull},
 #endif
 };
 
