@@ -13,12 +13,14 @@
 // max_abs_dt is the largest |t - t_ref| over the agreeing hits.
 //
 // gyro runs per thread count at its best SIMD level, or at each level --simd names (R1:
-// brute force on the reference subsample, as gyro has no sphere BVH yet). Peers run per
+// every ray through a scene of 10,000 sphere models under its BVH, the line peers are
+// compared with, and brute force on the reference subsample). Peers run per
 // thread count; Bullet on one thread only, on a subsample of 100,000 rays (every k-th ray
 // of the coherent LIDAR/CAMERA sets) or GYRO_BENCH_BULLET_RAYS, said in "rays". ratio_vs on
 // a peer line = its throughput / gyro's (gyro's best level, same thread count): below 1,
 // gyro is faster. A comment line before a line with errors names its first wrong rays.
 #include "gyro/batch_raycast.hpp"
+#include "gyro/scene.hpp"
 #include "gyro/triangle_mesh.hpp"
 #include "peers.hpp"
 #include "reference.hpp"
@@ -352,6 +354,46 @@ GyroRates run_gyro_spheres_subsample(const Options& o, const testing::SphereSet&
   return rates;
 }
 
+// R1 through gyro's scene: one sphere model per R1 sphere under the scene's BVH, every ray.
+GyroRates run_gyro_spheres_scene(const Options& o, const testing::SphereSet& spheres, const RayCase& c) {
+  GyroRates rates;
+  const auto start = std::chrono::steady_clock::now();
+  Scene scene;
+  for (std::size_t i = 0; i < spheres.size(); ++i) {
+    ModelDef d;
+    d.shape = ModelShape::sphere;
+    d.radius = spheres.r[i];
+    d.transform.position = {spheres.cx[i], spheres.cy[i], spheres.cz[i]};
+    ModelId id;
+    if (scene.add_model(d, &id) != Status::ok) {
+      std::printf("# gyro scene: add_model failed (%s)\n", last_error());
+      return rates;
+    }
+  }
+  scene.prepare();
+  const double build_ms = ms_since(start);
+  const SceneStats st = scene.stats();
+  const std::size_t n = c.rays.size();
+  const std::vector<float> tmax = tmax_column(c, n);
+  std::vector<float> t(n);
+  std::vector<ModelId> model(n);
+  std::vector<int32_t> prim(n);
+  const SceneHitsOut out{t.data(), model.data(), prim.data()};
+  for (SimdLevel level : ray_levels(o)) {
+    set_simd_level(level);
+    for (uint32_t threads : threads_to_run(o)) {
+      set_thread_count(threads);
+      const double ms = median_ms(o.reps, [&] { raycast_closest(scene, view_with_tmax(c.rays, tmax), n, out); });
+      rates[threads] = emit(c, {"gyro", "closest_hit_scene_bvh", simd_level_name(level), threads, build_ms, st.bytes,
+                                spheres.size(), ms, o.reps},
+                            score(t.data(), n, c.tmax, c.ref), "bytes_per_sphere");
+    }
+  }
+  set_simd_level(SimdLevel::automatic);
+  set_thread_count(0);
+  return rates;
+}
+
 // ---------------------------------------------------------------- peers
 
 enum class Geometry { triangles, spheres };
@@ -458,7 +500,8 @@ void run_r1(const Options& o) {
   for (const testing::RefHit& h : testing::ref_raycast_spheres(c.rays, kR1ReferenceRays, spheres)) c.ref.push_back(h.t);
   print_reference(c, ms_since(start), "368,880 hits and sum t 9,564,267.01 over all 1,000,000 rays");
   std::printf("# ratio_vs = this line's throughput / gyro's (best SIMD level, same threads)\n");
-  const GyroRates gyro = run_gyro_spheres_subsample(o, spheres, c);
+  const GyroRates gyro = run_gyro_spheres_scene(o, spheres, c);
+  run_gyro_spheres_subsample(o, spheres, c);
   if (!o.peers) return;
   run_embree(o, Geometry::spheres, nullptr, &spheres, c, gyro);
   run_bullet(o, Geometry::spheres, nullptr, &spheres, c, gyro);
