@@ -1,7 +1,7 @@
 // A triangle mesh with its bounding volume hierarchy, ready for queries (Cookbook chapter 11,
 // rebuilt as a modern ray tracer's acceleration structure).
 //
-// The BVH is built with binned SAH and stored as 4-wide nodes (the four children's bounds as
+// The BVH is built with binned SAH and stored as 8-wide nodes (the eight children's bounds as
 // structure of arrays, tested against a ray in one SIMD operation) over triangles copied in
 // leaf order into compact SoA leaves of up to four. Queries run the same watertight, double-
 // sided triangle test as gyro/triangle.hpp, so:
@@ -27,9 +27,9 @@ namespace gyro {
 
 /// Shape of a built BVH, for benchmarks and tests.
 struct BvhStats {
-  std::size_t nodes = 0;       ///< 4-wide interior nodes
+  std::size_t nodes = 0;       ///< interior nodes (8 children in a mesh, 4 in a scene)
   std::size_t leaves = 0;      ///< leaf blocks of up to 4 triangles
-  std::size_t max_depth = 0;   ///< in 4-wide nodes, root = 1
+  std::size_t max_depth = 0;   ///< in interior nodes, root = 1
   std::size_t bytes = 0;       ///< nodes, leaf triangles and index map
   double sah_cost = 0.0;       ///< expected cost (node tests + triangle tests) of a random ray
 };

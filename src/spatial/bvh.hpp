@@ -1,9 +1,10 @@
-// The 4-wide BVH over a triangle mesh: the layout the build writes and the kernels read.
+// The BVH over a triangle mesh: the layout the build writes and the kernels read.
 //
-// A node holds its four children's bounds as structure of arrays (bounds[2 * axis + 0] the
-// minima, bounds[2 * axis + 1] the maxima, one float per child), so one 4-wide lane tests a
-// ray against all four at once. An unused child slot has bounds (+inf, -inf), which no ray's
-// slab test can enter. A child is another node, a leaf block (kLeafBit set) or empty.
+// A mesh node has eight children (a scene node four) and holds their bounds as structure of
+// arrays (bounds[2 * axis + 0] the minima, bounds[2 * axis + 1] the maxima, one float per
+// child), so one 8-wide (4-wide) lane tests a ray against all of them at once. An unused
+// child slot has bounds (+inf, -inf), which no ray's slab test can enter. A child is another
+// node, a leaf block (kLeafBit set) or empty.
 //
 // Leaf blocks hold up to four triangles as structure of arrays (corner a, b, c coordinates,
 // one float per triangle) in leaf order, with each triangle's index in the input mesh;
@@ -29,16 +30,22 @@ inline constexpr uint32_t kNoItem = 0xFFFFFFFFu;
 /// Written as the hit index of a ray the query cannot answer (-2 as int32_t).
 inline constexpr uint32_t kInvalidRay = 0xFFFFFFFEu;
 /// The build caps the binary depth so that a traversal stack of kBvhStackSize entries always
-/// suffices (each 4-wide level pushes at most three siblings).
+/// suffices (each 8-wide level pushes at most seven siblings).
 inline constexpr std::size_t kBvhMaxDepth = 64;
-inline constexpr std::size_t kBvhStackSize = 3 * kBvhMaxDepth + 8;
+inline constexpr std::size_t kBvhStackSize = 7 * kBvhMaxDepth + 8;
 
-// Cache-line aligned: a node is exactly two lines, a leaf three, so a visit never touches
-// a line it does not need.
+// Cache-line aligned: a 4-wide node is exactly two lines, an 8-wide one four, a leaf three,
+// so a visit never touches a line it does not need.
 struct alignas(64) BvhNode4 {
   float bounds[6][4];  ///< [2 * axis + (0: min, 1: max)][child]
   uint32_t child[4];   ///< node index, kLeafBit | leaf block index, or kEmptyChild
   uint32_t unused[4] = {};  ///< to the cache line, zeroed so the bytes are defined
+};
+
+struct alignas(64) BvhNode8 {
+  float bounds[6][8];  ///< [2 * axis + (0: min, 1: max)][child]
+  uint32_t child[8];   ///< node index, kLeafBit | leaf block index, or kEmptyChild
+  uint32_t unused[8] = {};  ///< to the cache line, zeroed so the bytes are defined
 };
 
 struct alignas(64) BvhLeaf4 {
@@ -47,8 +54,8 @@ struct alignas(64) BvhLeaf4 {
   uint32_t unused[8] = {};  ///< to the cache line, zeroed so the bytes are defined
 };
 
-struct Bvh4 {
-  std::vector<BvhNode4> nodes;  ///< nodes[0] is the root
+struct Bvh8 {
+  std::vector<BvhNode8> nodes;  ///< nodes[0] is the root
   std::vector<BvhLeaf4> leaves;
   AABB bounds;
   BvhStats stats;
@@ -74,8 +81,8 @@ struct BvhBox {
 };
 
 /// Builds the BVH of a valid mesh (binned SAH over triangle centroids, then collapsed from
-/// binary to 4-wide). Deterministic: depends only on the mesh's values.
-Bvh4 build_bvh4(const MeshData& mesh);
+/// binary to 8-wide). Deterministic: depends only on the mesh's values.
+Bvh8 build_bvh8(const MeshData& mesh);
 
 /// Builds a BVH over boxes[0..count) with the same binned SAH and collapse (a box's
 /// centroid is the middle of its corners). Deterministic: depends only on the values.

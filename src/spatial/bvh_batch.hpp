@@ -1,5 +1,6 @@
-// The BVH raycast kernel: one ray at a time through the 4-wide BVH (the four children of a
-// node, and the four triangles of a leaf, in one 4-wide lane), closest hit or any hit.
+// The BVH raycast kernel: one ray at a time through the 8-wide BVH (the eight children of a
+// node in one 8-wide lane, the four triangles of a leaf in one 4-wide lane), closest hit or
+// any hit.
 #pragma once
 
 #include "core/dispatch.hpp"
@@ -11,7 +12,7 @@
 namespace gyro {
 
 struct BvhRaycastArgs {
-  const detail::Bvh4* bvh;
+  const detail::Bvh8* bvh;
   const float *ox, *oy, *oz, *dx, *dy, *dz;
   const float* tmin;  // null: 0
   const float* tmax;  // null: +inf

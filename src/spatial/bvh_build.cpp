@@ -1,7 +1,8 @@
 // BVH construction: a binary tree by binned SAH (Wald, "On fast construction of SAH-based
 // bounding volume hierarchies", 2007) over the triangles' bounding-box centroids, then
-// collapsed into 4-wide nodes by repeatedly opening the child with the largest surface
-// area (the usual BVH2-to-BVH4 collapse), with triangles packed into 4-wide leaf blocks.
+// collapsed into 8-wide nodes (4-wide for the scene's boxes) by repeatedly opening the
+// child with the largest surface area (the usual BVH2-to-BVHn collapse), with triangles
+// packed into 4-wide leaf blocks.
 //
 // Determinism: every decision is a function of float values and indices only (ties go to
 // the lower axis, the lower bin, the earlier child); partitions are stable and the median
@@ -48,10 +49,12 @@ struct BinaryNode {
   uint32_t first = 0, count = 0;  // leaf when count > 0
 };
 
-// A node whose four slots are empty: bounds (+inf, -inf), which no slab test enters.
-BvhNode4 empty_node() {
-  BvhNode4 n;
-  for (int k = 0; k < 4; ++k) {
+template <class Node> constexpr int width_of = int(sizeof(Node::child) / sizeof(uint32_t));
+
+// A node whose slots are all empty: bounds (+inf, -inf), which no slab test enters.
+template <class Node> Node empty_node() {
+  Node n;
+  for (int k = 0; k < width_of<Node>; ++k) {
     for (int a = 0; a < 3; ++a) n.bounds[2 * a][k] = kInf, n.bounds[2 * a + 1][k] = -kInf;
     n.child[k] = kEmptyChild;
   }
@@ -74,7 +77,7 @@ class Builder {
     }
   }
 
-  // Out is Bvh4 or BoxBvh4; leaf(out, b) appends binary leaf b's block and returns its code.
+  // Out is Bvh8 or BoxBvh4; leaf(out, b) appends binary leaf b's block and returns its code.
   template <class Out, class Leaf> Out run(Leaf&& leaf) {
     const uint32_t root = build(0, uint32_t(order_.size()), 0);
     Out out;
@@ -83,10 +86,10 @@ class Builder {
     const Box& rb = nodes_[root].box;
     out.bounds = aabb_from_min_max({rb.lo[0], rb.lo[1], rb.lo[2]}, {rb.hi[0], rb.hi[1], rb.hi[2]});
     root_area_ = std::max(rb.half_area(), 1e-300);
-    // The root is always a 4-wide node, even over a single leaf, so traversal has one shape.
+    // The root is always a wide node, even over a single leaf, so traversal has one shape.
     std::size_t depth = 0;
     if (nodes_[root].count > 0) {
-      out.nodes.push_back(empty_node());
+      out.nodes.push_back(empty_node<typename decltype(out.nodes)::value_type>());
       set_child(out.nodes[0], 0, nodes_[root].box, emit_leaf(out, nodes_[root], leaf));
       sah_ += 1.0;
       depth = 1;
@@ -96,7 +99,7 @@ class Builder {
     out.stats.nodes = out.nodes.size();
     out.stats.leaves = out.leaves.size();
     out.stats.max_depth = depth;
-    out.stats.bytes = out.nodes.size() * sizeof(BvhNode4) + out.leaves.size() * sizeof(out.leaves[0]);
+    out.stats.bytes = out.nodes.size() * sizeof(out.nodes[0]) + out.leaves.size() * sizeof(out.leaves[0]);
     out.stats.sah_cost = sah_;
     return out;
   }
@@ -195,7 +198,7 @@ class Builder {
     return count / 2;
   }
 
-  static void set_child(BvhNode4& n, int k, const Box& b, uint32_t code) {
+  template <class Node> static void set_child(Node& n, int k, const Box& b, uint32_t code) {
     for (int a = 0; a < 3; ++a) n.bounds[2 * a][k] = b.lo[a], n.bounds[2 * a + 1][k] = b.hi[a];
     n.child[k] = code;
   }
@@ -205,12 +208,14 @@ class Builder {
     return leaf(out, order_.data() + b.first, b.count);
   }
 
-  // Emits the 4-wide node for binary interior node b; returns its index.
+  // Emits the wide node for binary interior node b; returns its index.
   template <class Out, class Leaf> uint32_t emit(Out& out, uint32_t b, std::size_t depth, std::size_t& max_depth, Leaf& leaf) {
+    using Node = typename decltype(out.nodes)::value_type;
+    constexpr int kWidth = width_of<Node>;
     max_depth = std::max(max_depth, depth);
-    uint32_t kids[4] = {nodes_[b].left, nodes_[b].right};
+    uint32_t kids[kWidth] = {nodes_[b].left, nodes_[b].right};
     int n = 2;
-    while (n < 4) {
+    while (n < kWidth) {
       int open = -1;
       double area = -1.0;
       for (int k = 0; k < n; ++k) {
@@ -225,7 +230,7 @@ class Builder {
       ++n;
     }
     const uint32_t index = uint32_t(out.nodes.size());
-    out.nodes.push_back(empty_node());
+    out.nodes.push_back(empty_node<Node>());
     sah_ += nodes_[b].box.half_area() / root_area_;
     for (int k = 0; k < n; ++k) {
       const BinaryNode& c = nodes_[kids[k]];
@@ -240,7 +245,7 @@ class Builder {
 // NaN corners, which no ray hits.
 struct MeshLeaf {
   const MeshData& mesh;
-  uint32_t operator()(Bvh4& out, const uint32_t* tris, uint32_t count) const {
+  uint32_t operator()(Bvh8& out, const uint32_t* tris, uint32_t count) const {
     BvhLeaf4 leaf;
     const float nan = __builtin_nanf("");
     for (int k = 0; k < 4; ++k) {
@@ -270,7 +275,7 @@ uint32_t box_leaf(BoxBvh4& out, const uint32_t* items, uint32_t count) {
 
 }  // namespace
 
-Bvh4 build_bvh4(const MeshData& mesh) {
+Bvh8 build_bvh8(const MeshData& mesh) {
   const std::size_t n = mesh.triangle_count();
   std::vector<Box> prims(n);
   for (std::size_t i = 0; i < n; ++i)
@@ -279,13 +284,13 @@ Bvh4 build_bvh4(const MeshData& mesh) {
       const float p[3] = {mesh.x[v], mesh.y[v], mesh.z[v]};
       prims[i].grow(p);
     }
-  return Builder(std::move(prims)).run<Bvh4>(MeshLeaf{mesh});
+  return Builder(std::move(prims)).run<Bvh8>(MeshLeaf{mesh});
 }
 
 BoxBvh4 build_box_bvh4(const BvhBox* boxes, std::size_t count) {
   if (count == 0) {
     BoxBvh4 out;
-    out.nodes.push_back(empty_node());
+    out.nodes.push_back(empty_node<BvhNode4>());
     out.bounds = AABB{{0.0f, 0.0f, 0.0f}, {0.0f, 0.0f, 0.0f}};
     out.stats.nodes = 1;
     out.stats.bytes = sizeof(BvhNode4);

@@ -1,5 +1,6 @@
-// bvh_raycast at this translation unit's SIMD level: each ray walks the 4-wide BVH alone,
-// testing a node's four child boxes, or a leaf's four triangles, in one 4-wide lane (Quad).
+// bvh_raycast at this translation unit's SIMD level: each ray walks the 8-wide BVH alone,
+// testing a node's eight child boxes in one 8-wide lane (Oct: one AVX register, or two
+// Quads) and a leaf's four triangles in one 4-wide lane (Quad).
 //
 // Exactness: the answer is the brute-force one, the smallest (t, triangle index) over every
 // triangle the watertight test of ray_triangle_lanes.hpp hits in [tmin, tmax]. The order in
@@ -23,9 +24,9 @@
 namespace gyro::GYRO_ARCH_NS {
 namespace {
 
-using detail::Bvh4;
+using detail::Bvh8;
 using detail::BvhLeaf4;
-using detail::BvhNode4;
+using detail::BvhNode8;
 using detail::kLeafBit;
 using detail::kNoTriangle;
 
@@ -46,8 +47,17 @@ inline Quad leaf_t(const WatertightRay<Quad>& r, const TriangleL<Quad>& tri, Qua
   return select(k.inside && (t >= tmin) && (t <= tmax), t + Quad(0.0f), Quad(kInf));
 }
 
+// Asks for every line of a child that was pushed: by the time it is popped its lines are on
+// their way.
+inline void prefetch(const Bvh8& bvh, uint32_t code) {
+  const char* p = code & kLeafBit ? reinterpret_cast<const char*>(&bvh.leaves[code & ~kLeafBit])
+                                  : reinterpret_cast<const char*>(&bvh.nodes[code]);
+  const std::size_t size = code & kLeafBit ? sizeof(BvhLeaf4) : sizeof(BvhNode8);
+  for (std::size_t line = 0; line < size; line += 64) __builtin_prefetch(p + line);
+}
+
 template <bool AnyHit>
-inline void trace(const Bvh4& bvh, const float o[3], const float d[3], float tmin, float tmax, float& out_t,
+inline void trace(const Bvh8& bvh, const float o[3], const float d[3], float tmin, float tmax, float& out_t,
                   uint32_t& out_id) {
   const float inv[3] = {1.0f / d[0], 1.0f / d[1], 1.0f / d[2]};
   int near_row[3], far_row[3];
@@ -55,11 +65,12 @@ inline void trace(const Bvh4& bvh, const float o[3], const float d[3], float tmi
     const int neg = int(std::bit_cast<uint32_t>(inv[a]) >> 31);
     near_row[a] = 2 * a + neg, far_row[a] = 2 * a + 1 - neg;
   }
-  const Quad qo[3] = {Quad(o[0]), Quad(o[1]), Quad(o[2])};
-  const Quad qi[3] = {Quad(inv[0]), Quad(inv[1]), Quad(inv[2])};
+  const Oct qo[3] = {Oct(o[0]), Oct(o[1]), Oct(o[2])};
+  const Oct qi[3] = {Oct(inv[0]), Oct(inv[1]), Oct(inv[2])};
+  const Oct otmin(tmin);
   const Quad qtmin(tmin), qtmax(tmax);
   const WatertightRay<Quad> wr =
-      watertight_ray(RayL<Quad>{V3<Quad>(qo[0], qo[1], qo[2]), V3<Quad>(Quad(d[0]), Quad(d[1]), Quad(d[2]))});
+      watertight_ray(RayL<Quad>{V3<Quad>(Quad(o[0]), Quad(o[1]), Quad(o[2])), V3<Quad>(Quad(d[0]), Quad(d[1]), Quad(d[2]))});
 
   float best_t = kInf, limit = tmax;
   uint32_t best_id = kNoTriangle;
@@ -86,15 +97,15 @@ inline void trace(const Bvh4& bvh, const float o[3], const float d[3], float tmi
       limit = best_t + best_t * kBestSlack;
       continue;
     }
-    const BvhNode4& node = bvh.nodes[e.code];
-    const auto slab = [&](int row, int axis) { return (load<Quad>(node.bounds[row]) - qo[axis]) * qi[axis]; };
-    const Quad qlimit(limit);
-    const Quad tn = max(slab(near_row[0], 0), max(slab(near_row[1], 1), max(slab(near_row[2], 2), qtmin)));
-    const Quad tf = min(slab(far_row[0], 0), min(slab(far_row[1], 1), min(slab(far_row[2], 2), qlimit)));
-    const auto entered = tn <= tf + abs(tf) * Quad(kSlabSlack);
+    const BvhNode8& node = bvh.nodes[e.code];
+    const auto slab = [&](int row, int axis) { return (load<Oct>(node.bounds[row]) - qo[axis]) * qi[axis]; };
+    const Oct olimit(limit);
+    const Oct tn = max(slab(near_row[0], 0), max(slab(near_row[1], 1), max(slab(near_row[2], 2), otmin)));
+    const Oct tf = min(slab(far_row[0], 0), min(slab(far_row[1], 1), min(slab(far_row[2], 2), olimit)));
+    const auto entered = tn <= tf + abs(tf) * Oct(kSlabSlack);
     const unsigned mask = lane_bits(entered);
     if (mask == 0) continue;
-    float nears[4];
+    float nears[8];
     store(nears, tn);
     if ((mask & (mask - 1)) == 0) {  // one child entered, the common case: descend at once
       const int k = __builtin_ctz(mask);
@@ -107,15 +118,14 @@ inline void trace(const Bvh4& bvh, const float o[3], const float d[3], float tmi
       const bool swap = nears[k1] < nears[k0];
       const int kn = swap ? k1 : k0, kf = swap ? k0 : k1;
       const uint32_t c = node.child[kf];
-      __builtin_prefetch(c & kLeafBit ? static_cast<const void*>(&bvh.leaves[c & ~kLeafBit]) : &bvh.nodes[c]);
+      prefetch(bvh, c);
       stack[sp++] = {c, nears[kf]};
       e = {node.child[kn], nears[kn]};
       goto visit;
     }
     // Several: visit the nearest next and push the others farthest first (ties keep the
-    // slot order, so the order is a function of the values only). Pushed children are
-    // prefetched: by the time one is popped its lines are on their way.
-    Entry hit[4];
+    // slot order, so the order is a function of the values only).
+    Entry hit[8];
     int n = 0;
     for (unsigned m = mask; m != 0; m &= m - 1) {
       const int k = __builtin_ctz(m);
@@ -124,10 +134,7 @@ inline void trace(const Bvh4& bvh, const float o[3], const float d[3], float tmi
       hit[j] = {node.child[k], nears[k]};
     }
     for (int j = n - 1; j > 0; --j) {
-      const uint32_t c = hit[j].code;
-      const char* p = c & kLeafBit ? reinterpret_cast<const char*>(&bvh.leaves[c & ~kLeafBit])
-                                   : reinterpret_cast<const char*>(&bvh.nodes[c]);
-      __builtin_prefetch(p), __builtin_prefetch(p + 64);
+      prefetch(bvh, hit[j].code);
       stack[sp++] = hit[j];
     }
     e = hit[0];

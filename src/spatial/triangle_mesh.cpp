@@ -19,7 +19,7 @@ namespace gyro {
 
 struct TriangleMesh::Impl {
   MeshData mesh;
-  detail::Bvh4 bvh;
+  detail::Bvh8 bvh;
 };
 
 namespace {
@@ -54,8 +54,8 @@ void trace(const TriangleMesh::Impl& m, const Ray& ray, float tmin, float tmax, 
 // Calls leaf(triangle index) for every triangle in a leaf whose box overlaps [lo, hi], until
 // it returns true; returns whether it did.
 template <class Leaf> bool any_in_box(const TriangleMesh::Impl& m, const vec3& lo, const vec3& hi, Leaf&& leaf) {
-  const detail::Bvh4& bvh = m.bvh;
-  uint32_t stack[4 * detail::kBvhStackSize];
+  const detail::Bvh8& bvh = m.bvh;
+  uint32_t stack[detail::kBvhStackSize];
   int sp = 0;
   stack[sp++] = 0;
   const float qlo[3] = {lo.x, lo.y, lo.z}, qhi[3] = {hi.x, hi.y, hi.z};
@@ -67,8 +67,8 @@ template <class Leaf> bool any_in_box(const TriangleMesh::Impl& m, const vec3& l
         if (l.triangle[k] != detail::kNoTriangle && leaf(l.triangle[k])) return true;
       continue;
     }
-    const detail::BvhNode4& node = bvh.nodes[code];
-    for (int k = 3; k >= 0; --k) {
+    const detail::BvhNode8& node = bvh.nodes[code];
+    for (int k = 7; k >= 0; --k) {
       if (node.child[k] == detail::kEmptyChild) continue;
       bool in = true;
       for (int a = 0; a < 3; ++a) in = in && node.bounds[2 * a][k] <= qhi[a] && qlo[a] <= node.bounds[2 * a + 1][k];
@@ -139,7 +139,7 @@ Status TriangleMesh::create(const MeshData& mesh, TriangleMesh& out) {
   GYRO_TRY(validate_mesh(mesh));
   auto impl = std::make_unique<Impl>();
   impl->mesh = mesh;
-  impl->bvh = detail::build_bvh4(impl->mesh);
+  impl->bvh = detail::build_bvh8(impl->mesh);
   impl->bvh.stats.bytes += impl->mesh.indices.size() * sizeof(uint32_t) + impl->mesh.x.size() * 3 * sizeof(float);
   out.impl_ = std::move(impl);
   return Status::ok;

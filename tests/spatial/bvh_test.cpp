@@ -31,7 +31,7 @@ struct Box {
 };
 
 // Walks the tree; checks containment and counts triangle occurrences. Returns the depth.
-std::size_t check(const detail::Bvh4& bvh, const MeshData& m, uint32_t code, const Box& parent, std::vector<int>& seen) {
+std::size_t check(const detail::Bvh8& bvh, const MeshData& m, uint32_t code, const Box& parent, std::vector<int>& seen) {
   if (code & detail::kLeafBit) {
     const detail::BvhLeaf4& leaf = bvh.leaves[code & ~detail::kLeafBit];
     for (int k = 0; k < 4; ++k) {
@@ -50,10 +50,10 @@ std::size_t check(const detail::Bvh4& bvh, const MeshData& m, uint32_t code, con
     }
     return 0;
   }
-  const detail::BvhNode4& node = bvh.nodes[code];
+  const detail::BvhNode8& node = bvh.nodes[code];
   std::size_t depth = 0;
   int used = 0;
-  for (int k = 0; k < 4; ++k) {
+  for (int k = 0; k < 8; ++k) {
     if (node.child[k] == detail::kEmptyChild) {
       for (int a = 0; a < 3; ++a) EXPECT_TRUE(node.bounds[2 * a][k] == INFINITY && node.bounds[2 * a + 1][k] == -INFINITY);
       continue;
@@ -71,7 +71,7 @@ std::size_t check(const detail::Bvh4& bvh, const MeshData& m, uint32_t code, con
 }
 
 void check_mesh(const MeshData& m) {
-  const detail::Bvh4 bvh = detail::build_bvh4(m);
+  const detail::Bvh8 bvh = detail::build_bvh8(m);
   std::vector<int> seen(m.triangle_count(), 0);
   const Box all{{-INFINITY, -INFINITY, -INFINITY}, {INFINITY, INFINITY, INFINITY}};
   const std::size_t depth = check(bvh, m, 0, all, seen);
@@ -81,9 +81,9 @@ void check_mesh(const MeshData& m) {
   // Most leaves should be full: the SAH counts blocks of four.
   EXPECT_LE(bvh.leaves.size(), m.triangle_count() / 2 + 1);
   // Deterministic to the byte.
-  const detail::Bvh4 again = detail::build_bvh4(m);
+  const detail::Bvh8 again = detail::build_bvh8(m);
   ASSERT_EQ(again.nodes.size(), bvh.nodes.size());
-  EXPECT_EQ(std::memcmp(again.nodes.data(), bvh.nodes.data(), bvh.nodes.size() * sizeof(detail::BvhNode4)), 0);
+  EXPECT_EQ(std::memcmp(again.nodes.data(), bvh.nodes.data(), bvh.nodes.size() * sizeof(detail::BvhNode8)), 0);
   ASSERT_EQ(again.leaves.size(), bvh.leaves.size());
   // Leaves hold NaN padding (never equal to itself), so compare their bytes.
   EXPECT_EQ(std::memcmp(again.leaves.data(), bvh.leaves.data(), bvh.leaves.size() * sizeof(detail::BvhLeaf4)), 0);
@@ -96,7 +96,7 @@ TEST(Bvh, EveryTriangleOnceAndBoxesNested) {
 TEST(Bvh, CoincidentCentroidsStillSplitAndStayShallow) {
   const MeshData m = random_mesh(30000, 7, true);
   check_mesh(m);
-  EXPECT_LE(detail::build_bvh4(m).stats.max_depth, 40u);
+  EXPECT_LE(detail::build_bvh8(m).stats.max_depth, 40u);
 }
 
 }  // namespace

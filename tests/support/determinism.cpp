@@ -233,10 +233,10 @@ uint64_t scene_mesh_bvh() {
     return r;
   }();
   detail::StateHasher h;
-  const detail::Bvh4 bvh = detail::build_bvh4(mesh);
+  const detail::Bvh8 bvh = detail::build_bvh8(mesh);
   for (const auto& node : bvh.nodes) {
-    for (const auto& row : node.bounds) h.add_floats(std::span<const float>(row, 4));
-    h.add_u32s(std::span<const uint32_t>(node.child, 4));
+    for (const auto& row : node.bounds) h.add_floats(std::span<const float>(row, 8));
+    h.add_u32s(std::span<const uint32_t>(node.child, 8));
   }
   for (const auto& leaf : bvh.leaves) h.add_u32s(std::span<const uint32_t>(leaf.triangle, 4));
   TriangleMesh tm;
@@ -390,7 +390,7 @@ const DetScene kScenes[] = {
     {"n1_overlap", scene_n1_overlap, 0xad908dedd18ef994ull},
     {"geometry_batch", scene_geometry_batch, 0x1d2f55ce85f87c4full},
 #if defined(GYRO_HAS_SPATIAL)
-    {"mesh_bvh", scene_mesh_bvh, 0xc14979a18bf9ec7eull},
+    {"mesh_bvh", scene_mesh_bvh, 0x443954b2125dc999ull},
     {"camera_frustum", scene_camera_frustum, 0x246ff5bf8a6a766cull},
     {"scene_models", scene_models, 0xf0754d52193f4864ull},
 #endif
