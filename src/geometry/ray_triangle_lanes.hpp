@@ -62,20 +62,27 @@ template <class L> struct RayTriangleTerms {
   mask_of<L> inside;  // U, V, W all >= 0 or all <= 0, and det != 0
 };
 
-template <class L> inline RayTriangleTerms<L> ray_triangle_terms(const WatertightRay<L>& r, const TriangleL<L>& tri) {
-  const V3<L> A = permute(r, tri.a - r.o), B = permute(r, tri.b - r.o), C = permute(r, tri.c - r.o);
-  const L ax = A.x - r.sx * A.z, ay = A.y - r.sy * A.z;
-  const L bx = B.x - r.sx * B.z, by = B.y - r.sy * B.z;
-  const L cx = C.x - r.sx * C.z, cy = C.y - r.sy * C.z;
+/// The test from the corners relative to the origin, already permuted to (kx, ky, kz): for
+/// callers that permute once per ray instead of per lane (one ray against many triangles).
+template <class L>
+inline RayTriangleTerms<L> permuted_terms(const L& sx, const L& sy, const L& sz, const V3<L>& A, const V3<L>& B,
+                                          const V3<L>& C) {
+  const L ax = A.x - sx * A.z, ay = A.y - sy * A.z;
+  const L bx = B.x - sx * B.z, by = B.y - sy * B.z;
+  const L cx = C.x - sx * C.z, cy = C.y - sy * C.z;
   const L U = cx * by - cy * bx;
   const L V = ax * cy - ay * cx;
   const L W = bx * ay - by * ax;
   const L det = (U + V) + W;
-  const L T = (U * (r.sz * A.z) + V * (r.sz * B.z)) + W * (r.sz * C.z);
+  const L T = (U * (sz * A.z) + V * (sz * B.z)) + W * (sz * C.z);
   const L zero(0.0f);
   const auto inside = (((U >= zero) && (V >= zero) && (W >= zero)) || ((U <= zero) && (V <= zero) && (W <= zero))) &&
                       (det != zero);
   return {U, V, W, det, T, inside};
+}
+
+template <class L> inline RayTriangleTerms<L> ray_triangle_terms(const WatertightRay<L>& r, const TriangleL<L>& tri) {
+  return permuted_terms(r.sx, r.sy, r.sz, permute(r, tri.a - r.o), permute(r, tri.b - r.o), permute(r, tri.c - r.o));
 }
 
 }  // namespace detail_rt

@@ -1,6 +1,8 @@
-// bvh_raycast at this translation unit's SIMD level: each ray walks the 8-wide BVH alone,
-// testing a node's eight child boxes in one 8-wide lane (Oct: one AVX register, or two
-// Quads) and a leaf's four triangles in one 4-wide lane (Quad).
+// bvh_raycast at this translation unit's SIMD level: each ray walks the 8-wide BVH on its
+// own, testing a node's eight child boxes in one 8-wide lane (Oct: one AVX register, or two
+// Quads) and a leaf's four triangles in one 4-wide lane (Quad); eight rays from different
+// origins take turns, one visit each, so that each one's next node arrives from memory while
+// the others work.
 //
 // Exactness: the answer is the brute-force one, the smallest (t, triangle index) over every
 // triangle the watertight test of ray_triangle_lanes.hpp hits in [tmin, tmax]. The order in
@@ -15,7 +17,8 @@
 //  - a slab product that is NaN (an origin exactly on a slab plane of an axis the ray is
 //    parallel to: 0 * inf) is ignored by the ordered max/min (`a > b ? a : b` keeps b).
 // Every lane operation is elementwise and the visiting order is a function of float values
-// only, so each level (the scalar one runs Quad as four floats) gives the same bits.
+// only, so each level (the scalar one runs Quad as four floats) gives the same bits; a ray's
+// walk does not depend on which rays share its turns.
 #include "geometry/ray_triangle_lanes.hpp"
 #include "spatial/bvh_batch.hpp"
 
@@ -39,109 +42,134 @@ struct Entry {
   float near;
 };
 
+// The watertight test's frame of one ray with its axis permutation resolved once: a leaf's
+// corner rows are loaded in (kx, ky, kz) order, the values permute() would select lane by
+// lane, so the test gives ray_triangle_t's bits without a select per corner.
+struct LeafRay {
+  int row[3];  // kx, ky, kz
+  Quad o[3];   // the origin's kx, ky, kz coordinates
+  Quad sx, sy, sz;
+};
+
+inline LeafRay leaf_ray(const float o[3], const float d[3]) {
+  const WatertightRay<float> w = watertight_ray(RayL<float>{{o[0], o[1], o[2]}, {d[0], d[1], d[2]}});
+  const int kz = w.z_is_x ? 0 : w.z_is_y ? 1 : 2, x0 = (kz + 1) % 3, y0 = (kz + 2) % 3;
+  const int kx = w.swap ? y0 : x0, ky = w.swap ? x0 : y0;
+  return {{kx, ky, kz}, {Quad(o[kx]), Quad(o[ky]), Quad(o[kz])}, Quad(w.sx), Quad(w.sy), Quad(w.sz)};
+}
+
 // Only t of ray_triangle_t (the same expressions, so the same bits): the traversal needs no
 // barycentrics, and the caller recomputes them for the one triangle that wins.
-inline Quad leaf_t(const WatertightRay<Quad>& r, const TriangleL<Quad>& tri, Quad tmin, Quad tmax) {
-  const auto k = detail_rt::ray_triangle_terms(r, tri);
+inline Quad leaf_t(const LeafRay& r, const BvhLeaf4& leaf, Quad tmin, Quad tmax) {
+  const auto corner = [&](int c) {
+    const auto row = [&](int k) { return load<Quad>(leaf.corner[3 * c + r.row[k]]) - r.o[k]; };
+    return V3<Quad>(row(0), row(1), row(2));
+  };
+  const auto k = detail_rt::permuted_terms(r.sx, r.sy, r.sz, corner(0), corner(1), corner(2));
   const Quad t = k.T / k.det;
   return select(k.inside && (t >= tmin) && (t <= tmax), t + Quad(0.0f), Quad(kInf));
 }
 
-// Asks for every line of a child that was pushed: by the time it is popped its lines are on
-// their way.
+// Asks for every line of a node or leaf block: a visit needs all of them.
 inline void prefetch(const Bvh8& bvh, uint32_t code) {
-  const char* p = code & kLeafBit ? reinterpret_cast<const char*>(&bvh.leaves[code & ~kLeafBit])
-                                  : reinterpret_cast<const char*>(&bvh.nodes[code]);
-  const std::size_t size = code & kLeafBit ? sizeof(BvhLeaf4) : sizeof(BvhNode8);
-  for (std::size_t line = 0; line < size; line += 64) __builtin_prefetch(p + line);
+  if (code & kLeafBit) {
+    const char* p = reinterpret_cast<const char*>(&bvh.leaves[code & ~kLeafBit]);
+    for (std::size_t line = 0; line < sizeof(BvhLeaf4); line += 64) __builtin_prefetch(p + line);
+  } else {
+    const char* p = reinterpret_cast<const char*>(&bvh.nodes[code]);
+    for (std::size_t line = 0; line < sizeof(BvhNode8); line += 64) __builtin_prefetch(p + line);
+  }
 }
 
-template <bool AnyHit>
-inline void trace(const Bvh8& bvh, const float o[3], const float d[3], float tmin, float tmax, float& out_t,
-                  uint32_t& out_id) {
-  const float inv[3] = {1.0f / d[0], 1.0f / d[1], 1.0f / d[2]};
+// One ray's walk, advanced one visit at a time so that several rays can take turns: a visit
+// ends by prefetching the next node or leaf, and the other rays' visits hide the wait for it
+// (the BVH is far larger than the L2 cache, so most visits would otherwise stall on memory).
+struct Walk {
+  Oct o[3], inv[3], tmin8;
+  Quad tmin4, tmax4;
+  LeafRay leaf;
   int near_row[3], far_row[3];
+  float best_t, limit;
+  uint32_t best_id;
+  std::size_t ray;
+  Entry next;  // what the next visit tests, its lines already asked for
+  int sp;
+  Entry stack[detail::kBvhStackSize];
+};
+
+inline void start(const Bvh8& bvh, Walk& w, std::size_t ray, const float o[3], const float d[3], float tmin, float tmax) {
+  const float inv[3] = {1.0f / d[0], 1.0f / d[1], 1.0f / d[2]};
   for (int a = 0; a < 3; ++a) {
     const int neg = int(std::bit_cast<uint32_t>(inv[a]) >> 31);
-    near_row[a] = 2 * a + neg, far_row[a] = 2 * a + 1 - neg;
+    w.near_row[a] = 2 * a + neg, w.far_row[a] = 2 * a + 1 - neg;
+    w.o[a] = Oct(o[a]), w.inv[a] = Oct(inv[a]);
   }
-  const Oct qo[3] = {Oct(o[0]), Oct(o[1]), Oct(o[2])};
-  const Oct qi[3] = {Oct(inv[0]), Oct(inv[1]), Oct(inv[2])};
-  const Oct otmin(tmin);
-  const Quad qtmin(tmin), qtmax(tmax);
-  const WatertightRay<Quad> wr =
-      watertight_ray(RayL<Quad>{V3<Quad>(Quad(o[0]), Quad(o[1]), Quad(o[2])), V3<Quad>(Quad(d[0]), Quad(d[1]), Quad(d[2]))});
+  w.tmin8 = Oct(tmin), w.tmin4 = Quad(tmin), w.tmax4 = Quad(tmax);
+  w.leaf = leaf_ray(o, d);
+  w.best_t = kInf, w.limit = tmax, w.best_id = kNoTriangle;
+  w.ray = ray;
+  w.next = {0, tmin};
+  w.sp = 0;
+  prefetch(bvh, 0);
+}
 
-  float best_t = kInf, limit = tmax;
-  uint32_t best_id = kNoTriangle;
-  Entry stack[detail::kBvhStackSize];
-  int sp = 0;
-  stack[sp++] = {0, tmin};
-  Entry e;
-  while (sp > 0) {
-    e = stack[--sp];
-  visit:
-    if (e.near > limit) continue;
-    if (e.code & kLeafBit) {
-      const BvhLeaf4& leaf = bvh.leaves[e.code & ~kLeafBit];
-      const auto row = [&](int k) { return load<Quad>(leaf.corner[k]); };
-      const TriangleL<Quad> tri{{row(0), row(1), row(2)}, {row(3), row(4), row(5)}, {row(6), row(7), row(8)}};
-      const Quad t = leaf_t(wr, tri, qtmin, qtmax);
-      if (!any(t < Quad(kInf))) continue;  // most leaves a ray enters it does not hit
+// Visits w.next and picks the one after it; false when the walk is over.
+template <bool AnyHit> inline bool step(const Bvh8& bvh, Walk& w) {
+  const Entry e = w.next;
+  if (e.code & kLeafBit) {
+    const BvhLeaf4& leaf = bvh.leaves[e.code & ~kLeafBit];
+    const Quad t = leaf_t(w.leaf, leaf, w.tmin4, w.tmax4);
+    if (any(t < Quad(kInf))) {  // most leaves a ray enters it does not hit
       float ts[4];
       store(ts, t);
       for (int k = 0; k < 4; ++k) {
-        if (ts[k] < best_t || (ts[k] == best_t && leaf.triangle[k] < best_id)) best_t = ts[k], best_id = leaf.triangle[k];
+        if (ts[k] < w.best_t || (ts[k] == w.best_t && leaf.triangle[k] < w.best_id))
+          w.best_t = ts[k], w.best_id = leaf.triangle[k];
       }
-      if constexpr (AnyHit) break;
-      limit = best_t + best_t * kBestSlack;
-      continue;
+      if constexpr (AnyHit) return false;
+      w.limit = w.best_t + w.best_t * kBestSlack;
     }
+  } else {
     const BvhNode8& node = bvh.nodes[e.code];
-    const auto slab = [&](int row, int axis) { return (load<Oct>(node.bounds[row]) - qo[axis]) * qi[axis]; };
-    const Oct olimit(limit);
-    const Oct tn = max(slab(near_row[0], 0), max(slab(near_row[1], 1), max(slab(near_row[2], 2), otmin)));
-    const Oct tf = min(slab(far_row[0], 0), min(slab(far_row[1], 1), min(slab(far_row[2], 2), olimit)));
-    const auto entered = tn <= tf + abs(tf) * Oct(kSlabSlack);
-    const unsigned mask = lane_bits(entered);
-    if (mask == 0) continue;
-    float nears[8];
-    store(nears, tn);
-    if ((mask & (mask - 1)) == 0) {  // one child entered, the common case: descend at once
-      const int k = __builtin_ctz(mask);
-      e = {node.child[k], nears[k]};
-      goto visit;
+    const auto slab = [&](int row, int axis) { return (load<Oct>(node.bounds[row]) - w.o[axis]) * w.inv[axis]; };
+    const int* nr = w.near_row;
+    const int* fr = w.far_row;
+    const Oct tn = max(slab(nr[0], 0), max(slab(nr[1], 1), max(slab(nr[2], 2), w.tmin8)));
+    const Oct tf = min(slab(fr[0], 0), min(slab(fr[1], 1), min(slab(fr[2], 2), Oct(w.limit))));
+    const unsigned mask = lane_bits(tn <= tf + abs(tf) * Oct(kSlabSlack));
+    if (mask != 0) {
+      float nears[8];
+      store(nears, tn);
+      const int k0 = __builtin_ctz(mask);
+      w.next = {node.child[k0], nears[k0]};
+      if (mask & (mask - 1)) {
+        // Several: the nearest next, the others pushed farthest first (ties keep the slot
+        // order, so the order is a function of the values only).
+        Entry hit[8];
+        int n = 0;
+        for (unsigned m = mask; m != 0; m &= m - 1) {
+          const int k = __builtin_ctz(m);
+          int j = n++;
+          while (j > 0 && hit[j - 1].near > nears[k]) hit[j] = hit[j - 1], --j;
+          hit[j] = {node.child[k], nears[k]};
+        }
+        for (int j = n - 1; j > 0; --j) w.stack[w.sp++] = hit[j];
+        w.next = hit[0];
+      }
+      if (w.next.near <= w.limit) {
+        prefetch(bvh, w.next.code);
+        return true;
+      }
     }
-    const unsigned rest = mask & (mask - 1);
-    if ((rest & (rest - 1)) == 0) {  // two: the nearer next (ties: the lower slot), the other pushed
-      const int k0 = __builtin_ctz(mask), k1 = __builtin_ctz(rest);
-      const bool swap = nears[k1] < nears[k0];
-      const int kn = swap ? k1 : k0, kf = swap ? k0 : k1;
-      const uint32_t c = node.child[kf];
-      prefetch(bvh, c);
-      stack[sp++] = {c, nears[kf]};
-      e = {node.child[kn], nears[kn]};
-      goto visit;
-    }
-    // Several: visit the nearest next and push the others farthest first (ties keep the
-    // slot order, so the order is a function of the values only).
-    Entry hit[8];
-    int n = 0;
-    for (unsigned m = mask; m != 0; m &= m - 1) {
-      const int k = __builtin_ctz(m);
-      int j = n++;
-      while (j > 0 && hit[j - 1].near > nears[k]) hit[j] = hit[j - 1], --j;
-      hit[j] = {node.child[k], nears[k]};
-    }
-    for (int j = n - 1; j > 0; --j) {
-      prefetch(bvh, hit[j].code);
-      stack[sp++] = hit[j];
-    }
-    e = hit[0];
-    goto visit;
   }
-  out_t = best_t;
-  out_id = best_id;
+  while (w.sp > 0) {
+    const Entry p = w.stack[--w.sp];
+    if (p.near > w.limit) continue;
+    w.next = p;
+    prefetch(bvh, p.code);
+    return true;
+  }
+  return false;
 }
 
 inline bool finite(float v) { return (std::bit_cast<uint32_t>(v) & 0x7f800000u) != 0x7f800000u; }
@@ -154,18 +182,55 @@ inline bool valid_ray(const float o[3], const float d[3], float tmin, float tmax
   return coords && dir && finite(tmin) && tmin >= 0.0f && tmax >= tmin;
 }
 
+// Rays in flight at once: enough visits between a prefetch and its use to cover a miss to
+// the last-level cache.
+constexpr int kInFlight = 8;
+
+// Rays from one origin (a camera, a lidar) walk nearly the same nodes one after another, which
+// the cache then already holds: for them taking turns would only cost mispredicted branches.
+inline bool one_origin(const BvhRaycastArgs& a, std::size_t begin, std::size_t end) {
+  for (std::size_t i = begin + 1; i < end; ++i)
+    if (a.ox[i] != a.ox[begin] || a.oy[i] != a.oy[begin] || a.oz[i] != a.oz[begin]) return false;
+  return true;
+}
+
 template <bool AnyHit> void run(const BvhRaycastArgs& a, std::size_t begin, std::size_t end) {
-  for (std::size_t i = begin; i < end; ++i) {
-    const float o[3] = {a.ox[i], a.oy[i], a.oz[i]};
-    const float d[3] = {a.dx[i], a.dy[i], a.dz[i]};
-    const float tmin = a.tmin ? a.tmin[i] : 0.0f;
-    const float tmax = a.tmax ? a.tmax[i] : kInf;
-    if (!valid_ray(o, d, tmin, tmax)) {
+  Walk walks[kInFlight];
+  int live[kInFlight], n = 0;
+  std::size_t next = begin;
+  // Starts the next valid ray on w (invalid ones are answered at once); false when none is left.
+  const auto refill = [&](Walk& w) {
+    for (; next < end; ++next) {
+      const std::size_t i = next;
+      const float o[3] = {a.ox[i], a.oy[i], a.oz[i]};
+      const float d[3] = {a.dx[i], a.dy[i], a.dz[i]};
+      const float tmin = a.tmin ? a.tmin[i] : 0.0f;
+      const float tmax = a.tmax ? a.tmax[i] : kInf;
+      if (valid_ray(o, d, tmin, tmax)) {
+        start(*a.bvh, w, i, o, d, tmin, tmax);
+        ++next;
+        return true;
+      }
       a.t_out[i] = kInf;
       a.index_out[i] = detail::kInvalidRay;
-      continue;
     }
-    trace<AnyHit>(*a.bvh, o, d, tmin, tmax, a.t_out[i], a.index_out[i]);
+    return false;
+  };
+  const int in_flight = one_origin(a, begin, end) ? 1 : kInFlight;
+  for (int k = 0; k < in_flight; ++k)
+    if (refill(walks[k])) live[n++] = k;
+  while (n > 0) {
+    for (int j = 0; j < n;) {
+      Walk& w = walks[live[j]];
+      if (step<AnyHit>(*a.bvh, w)) {
+        ++j;
+        continue;
+      }
+      a.t_out[w.ray] = w.best_t;
+      a.index_out[w.ray] = w.best_id;
+      if (refill(w)) ++j;
+      else live[j] = live[--n];
+    }
   }
 }
 

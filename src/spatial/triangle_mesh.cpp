@@ -29,8 +29,9 @@ namespace lanes = GYRO_ARCH_NS;
 
 constexpr float kInf = __builtin_inff();
 constexpr std::size_t kMaxCount = 0x7FFFFFFF;
-// Rays per chunk: BVH rays cost microseconds each, so small chunks balance threads well.
-constexpr std::size_t kRayChunk = 64;
+// Rays per chunk: BVH rays cost about a microsecond each, so chunks this small still balance
+// threads well, and large enough that the kernel's eight rays in flight rarely run short.
+constexpr std::size_t kRayChunk = 256;
 
 // Normal facing the ray and the barycentric weights of b and c, for the winning triangle
 // (the scalar instantiation of the batch's templates: the same bits at every level).
