@@ -70,6 +70,7 @@ class Builder {
     const std::size_t n = prim_.size();
     centroid_.resize(n);
     order_.resize(n);
+    scratch_.resize(n);
     for (std::size_t i = 0; i < n; ++i) {
       const Box& b = prim_[i];
       for (int a = 0; a < 3; ++a) centroid_[i][a] = (b.lo[a] + b.hi[a]) * 0.5f;
@@ -108,6 +109,7 @@ class Builder {
   std::vector<Box> prim_;
   std::vector<std::array<float, 3>> centroid_;
   std::vector<uint32_t> order_;
+  std::vector<uint32_t> scratch_;  // sah_split's right side, before it is copied back
   std::vector<BinaryNode> nodes_;
   double root_area_ = 1.0;
   double sah_ = 0.0;
@@ -141,46 +143,58 @@ class Builder {
   }
 
   // Binned SAH: the best plane between bins on any axis; returns the left count (0 if none).
+  // One pass bins every primitive on all three axes (its box and centroid are read once), and
+  // the partition is stable through a scratch buffer, with no allocation.
   uint32_t sah_split(uint32_t first, uint32_t count, const Box& cbox) {
+    float lo[3], scale[3];
+    for (int axis = 0; axis < 3; ++axis) {
+      const float ext = cbox.hi[axis] - cbox.lo[axis];
+      lo[axis] = cbox.lo[axis];
+      scale[axis] = ext > 0.0f ? float(kBins) / ext : 0.0f;  // 0: a flat axis, all in bin 0
+    }
+    Box bin_box[3][kBins];
+    uint32_t bin_count[3][kBins] = {};
+    for (uint32_t i = first; i < first + count; ++i) {
+      const uint32_t p = order_[i];
+      for (int axis = 0; axis < 3; ++axis) {
+        const int b = bin_of(centroid_[p][axis], lo[axis], scale[axis]);
+        bin_box[axis][b].grow(prim_[p]);
+        ++bin_count[axis][b];
+      }
+    }
     double best_cost = kInf;
     int best_axis = -1, best_bin = 0;
     for (int axis = 0; axis < 3; ++axis) {
-      const float lo = cbox.lo[axis], ext = cbox.hi[axis] - cbox.lo[axis];
-      if (!(ext > 0.0f)) continue;
-      const float scale = float(kBins) / ext;
-      Box bin_box[kBins];
-      uint32_t bin_count[kBins] = {};
-      for (uint32_t i = first; i < first + count; ++i) {
-        const uint32_t p = order_[i];
-        const int b = bin_of(centroid_[p][axis], lo, scale);
-        bin_box[b].grow(prim_[p]);
-        ++bin_count[b];
-      }
+      if (scale[axis] == 0.0f) continue;
       // Right-to-left sweep: the cost of everything right of each plane.
       double right_cost[kBins];
       Box acc;
       uint32_t n = 0;
       for (int b = kBins - 1; b > 0; --b) {
-        acc.grow(bin_box[b]);
-        n += bin_count[b];
+        acc.grow(bin_box[axis][b]);
+        n += bin_count[axis][b];
         right_cost[b] = acc.half_area() * blocks(n);
       }
       acc = Box();
       n = 0;
       for (int b = 0; b < kBins - 1; ++b) {
-        acc.grow(bin_box[b]);
-        n += bin_count[b];
+        acc.grow(bin_box[axis][b]);
+        n += bin_count[axis][b];
         if (n == 0 || n == count) continue;
         const double cost = acc.half_area() * blocks(n) + right_cost[b + 1];
         if (cost < best_cost) best_cost = cost, best_axis = axis, best_bin = b;
       }
     }
     if (best_axis < 0) return 0;
-    const float lo = cbox.lo[best_axis], scale = float(kBins) / (cbox.hi[best_axis] - cbox.lo[best_axis]);
-    auto* mid = std::stable_partition(order_.data() + first, order_.data() + first + count, [&](uint32_t p) {
-      return bin_of(centroid_[p][best_axis], lo, scale) <= best_bin;
-    });
-    return uint32_t(mid - (order_.data() + first));
+    uint32_t* const range = order_.data() + first;
+    uint32_t left = 0, right = 0;
+    for (uint32_t i = 0; i < count; ++i) {
+      const uint32_t p = range[i];
+      if (bin_of(centroid_[p][best_axis], lo[best_axis], scale[best_axis]) <= best_bin) range[left++] = p;
+      else scratch_[right++] = p;
+    }
+    std::copy(scratch_.data(), scratch_.data() + right, range + left);
+    return left;
   }
 
   // Half by count along the widest centroid axis, ordered by (centroid, index).
