@@ -250,7 +250,7 @@ GYRO_API gyro_status gyro_obb_separation_pairwise(const gyro_obb_soa* a, const g
  *  are answered. (The brute-force calls above fail the whole call instead.) */
 enum { GYRO_RAY_INVALID = -2 };
 
-/** A triangle mesh with its BVH (4-wide, binned SAH). Immutable; may be queried from many
+/** A triangle mesh with its BVH (8-wide, binned SAH). Immutable; may be queried from many
  *  threads at once. */
 typedef struct gyro_mesh gyro_mesh;
 
@@ -279,7 +279,7 @@ GYRO_API void gyro_mesh_destroy(gyro_mesh* mesh);
 
 typedef struct gyro_mesh_info {
   int32_t triangle_count;
-  int32_t bvh_nodes;  /**< 4-wide interior nodes */
+  int32_t bvh_nodes;  /**< 8-wide interior nodes */
   int32_t bvh_leaves; /**< leaf blocks of up to 4 triangles */
   int32_t bvh_depth;
   uint64_t bytes;     /**< BVH, leaf triangles and the mesh copy */
