@@ -93,4 +93,11 @@ Status check_rays(const RaysView& r, std::size_t n, bool values) {
   return Status::ok;
 }
 
+Status check_hit_columns(const float* nx, const float* ny, const float* nz, const float* u, const float* v) {
+  const int normals = (nx != nullptr) + (ny != nullptr) + (nz != nullptr);
+  if (normals != 0 && normals != 3) return fail(Status::null_argument, "hits.nx, ny, nz: give all three or none");
+  if ((u == nullptr) != (v == nullptr)) return fail(Status::null_argument, "hits.u, v: give both or none");
+  return Status::ok;
+}
+
 }  // namespace gyro::detail

@@ -18,4 +18,8 @@ Status check_shape_array(const ShapeArray& s, std::size_t n, const char* which, 
 /// Reports the first bad array and index.
 Status check_rays(const RaysView& rays, std::size_t n, bool values = true);
 
+/// The optional per-hit output columns of the batch raycasts: the normal all three or none,
+/// the barycentrics u and v both or none.
+Status check_hit_columns(const float* nx, const float* ny, const float* nz, const float* u, const float* v);
+
 }  // namespace gyro::detail

@@ -703,9 +703,8 @@ Status run_batch(const Scene& scene, const RaysView& rays, std::size_t n, const 
   if (n == 0) return Status::ok;
   GYRO_TRY(detail::require_not_null(hits.t, "hits.t"));
   GYRO_TRY(detail::require_not_null(hits.model, "hits.model"));
-  const int normals = (hits.nx != nullptr) + (hits.ny != nullptr) + (hits.nz != nullptr);
-  if (normals != 0 && normals != 3) return fail(Status::null_argument, "hits.nx, ny, nz: give all three or none");
-  if ((hits.u == nullptr) != (hits.v == nullptr)) return fail(Status::null_argument, "hits.u, v: give both or none");
+  GYRO_TRY(detail::check_hit_columns(hits.nx, hits.ny, hits.nz, hits.u, hits.v));
+  const bool normals = hits.nx != nullptr;  // all three, checked above
   GYRO_TRY(detail::check_rays(rays, n, false));  // bad values are flagged per ray
   detail::FloatEnvGuard env;
   scene.prepare();

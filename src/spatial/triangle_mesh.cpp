@@ -101,9 +101,8 @@ Status run_batch(const TriangleMesh& mesh, const RaysView& rays, std::size_t ray
   if (ray_count == 0) return Status::ok;
   GYRO_TRY(detail::require_not_null(hits.t, "hits.t"));
   GYRO_TRY(detail::require_not_null(hits.primitive, "hits.primitive"));
-  const int normals = (hits.nx != nullptr) + (hits.ny != nullptr) + (hits.nz != nullptr);
-  if (normals != 0 && normals != 3) return fail(Status::null_argument, "hits.nx, ny, nz: give all three or none");
-  if ((hits.u == nullptr) != (hits.v == nullptr)) return fail(Status::null_argument, "hits.u, v: give both or none");
+  GYRO_TRY(detail::check_hit_columns(hits.nx, hits.ny, hits.nz, hits.u, hits.v));
+  const bool normals = hits.nx != nullptr;  // all three, checked above
   GYRO_TRY(detail::check_rays(rays, ray_count, false));  // bad values are flagged per ray
 
   detail::FloatEnvGuard env;
@@ -111,7 +110,7 @@ Status run_batch(const TriangleMesh& mesh, const RaysView& rays, std::size_t ray
   const BvhRaycastArgs args{&m.bvh, rays.ox, rays.oy, rays.oz, rays.dx, rays.dy, rays.dz, rays.tmin, rays.tmax,
                             any, hits.t, reinterpret_cast<uint32_t*>(hits.primitive)};
   auto* kernel = GYRO_DISPATCH(bvh_raycast);
-  const bool details = normals == 3 || hits.u != nullptr;
+  const bool details = normals || hits.u != nullptr;
   detail::parallel_for(ray_count, kRayChunk, [&](std::size_t b, std::size_t e) {
     kernel(args, b, e);
     if (!details) return;
