@@ -218,9 +218,7 @@ GYRO_API gyro_status gyro_scene_query_frustum(const gyro_scene* scene, const gyr
     GYRO_TRY(require(scene, "scene"));
     GYRO_TRY(require(frustum, "frustum"));
     GYRO_TRY(check_query_out(out, capacity, count));
-    gyro::Frustum f;
-    for (int p = 0; p < 6; ++p)
-      f.planes[p] = {{frustum->planes[p][0], frustum->planes[p][1], frustum->planes[p][2]}, frustum->planes[p][3]};
+    const gyro::Frustum f = gyro::capi::frustum_of(*frustum);
     std::vector<gyro::ModelId> ids;
     GYRO_TRY(gyro::query(scene->scene, f, ids));
     return write_ids(ids, out, capacity, count);

@@ -239,9 +239,7 @@ GYRO_API gyro_status gyro_frustum_cull(const gyro_frustum* frustum, const gyro_s
     GYRO_TRY(require(frustum, "frustum"));
     GYRO_TRY(require(shapes, "shapes"));
     GYRO_TRY(check_count(count, "count"));
-    gyro::Frustum f;
-    for (int p = 0; p < 6; ++p)
-      f.planes[p] = {{frustum->planes[p][0], frustum->planes[p][1], frustum->planes[p][2]}, frustum->planes[p][3]};
+    const gyro::Frustum f = gyro::capi::frustum_of(*frustum);
     const auto n = static_cast<std::size_t>(count);
     switch (shapes->type) {
       case GYRO_SHAPE_SPHERE: return gyro::frustum_cull(f, view_of<gyro::SpheresView>(shapes->as.sphere), n, visible);
