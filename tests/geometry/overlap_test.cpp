@@ -21,6 +21,8 @@
 #include "overlap_probe.hpp"
 #include "workloads.hpp"
 
+#include "opaque_float.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -57,18 +59,8 @@ double sum(const vec3& v) { return (double(v.x) + v.y) + v.z; }
 double at(D3 v, int i) { return i == 0 ? v.x : i == 1 ? v.y : v.z; }
 D3 row(const mat3& m, int i) { return {m.m[i][0], m.m[i][1], m.m[i][2]}; }
 
-// Makes the compiler forget what it knows about a case's values, so every later read loads
-// the float bits the API receives. g++ 12.2 at -O3 was seen to fold double(float(x)) back
-// to x when a case is generated and measured in one inlined block (the rounding to float
-// vanished after SLP vectorisation), so the binary64 reference measured another input.
-template <class T> void opaque_one(T& value) { asm volatile("" : : "r"(&value) : "memory"); }
-template <class... T> void opaque(T&... values) { (opaque_one(values), ...); }
-// A binary64 value rounded to float, opaque to the optimiser for the same reason.
-float f32(double v) {
-  float f = float(v);
-  opaque(f);
-  return f;
-}
+using testing::f32;
+using testing::opaque;
 vec3 f3(D3 v) { return {f32(v.x), f32(v.y), f32(v.z)}; }
 
 // ---------------------------------------------------------------- seeded cases
