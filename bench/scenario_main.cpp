@@ -15,6 +15,10 @@ void run_r1(const Options&);
 void run_r2(const Options&);
 void run_lidar(const Options&);
 void run_camera(const Options&);
+void run_b1(const Options&);
+void run_p1(const Options&);
+void run_p2(const Options&);
+void run_p3(const Options&);
 
 namespace {
 const Workload kWorkloads[] = {
@@ -26,6 +30,11 @@ const Workload kWorkloads[] = {
     {"R2", "10^6 rays onto a 522k-triangle terrain, closest hit through gyro's BVH; peers: Embree, Bullet", run_r2},
     {"LIDAR", "64 x 2048 lidar fan inside the R2 terrain, tmax 120; peers: Embree, Bullet", run_lidar},
     {"CAMERA", "1920 x 1080 primary rays over the R2 terrain; peers: Embree, Bullet", run_camera},
+    {"B1", "broadphase on pile-like scenes of 1k, 10k, 100k boxes plus a ground box; error against brute force / grid", run_b1},
+    {"P1", "box pyramid, base 20 (210 boxes), 600 steps, sleeping off; gyro soft step and Baumgarte; peer: Bullet",
+     run_p1},
+    {"P2", "box pyramid, base 100 (5,050 boxes), 300 steps, sleeping off; peer: Bullet", run_p2},
+    {"P3", "16 pyramids of base 10 (880 boxes) on one ground, 300 steps, sleeping off; peer: Bullet", run_p3},
 };
 
 int usage() {

@@ -34,7 +34,7 @@ extern "C" {
 
 /** ABI version this header describes: (major << 16) | minor. A library with the same
  *  major and a minor >= the header's is compatible. */
-#define GYRO_ABI_VERSION ((1u << 16) | 1u)
+#define GYRO_ABI_VERSION ((1u << 16) | 2u)
 
 /** The ABI version of the linked library; compare with GYRO_ABI_VERSION. */
 GYRO_API uint32_t gyro_abi_version(void);
@@ -51,7 +51,8 @@ enum {
   GYRO_FEATURE_MATH = 1u << 8,          /**< math and deterministic trigonometry */
   GYRO_FEATURE_GEOMETRY = 1u << 9,      /**< 3D primitives, batch tests and raycasts */
   GYRO_FEATURE_2D = 1u << 10,           /**< 2D primitives and the quadtree (C++ API) */
-  GYRO_FEATURE_SPATIAL = 1u << 11       /**< meshes, BVH, OBJ reader, camera, frustum culling */
+  GYRO_FEATURE_SPATIAL = 1u << 11,      /**< meshes, BVH, OBJ reader, camera, frustum culling */
+  GYRO_FEATURE_DYNAMICS = 1u << 12      /**< rigid bodies, contacts, the solver and the world (ABI 1.2) */
 };
 GYRO_API uint32_t gyro_features(void);
 
@@ -443,6 +444,218 @@ typedef struct gyro_scene_hit {
 /** The closest model under a screen point (pixels, origin top-left, y down). */
 GYRO_API gyro_status gyro_scene_pick(const gyro_scene* scene, const gyro_camera* camera, float screen_x, float screen_y,
                                      float viewport_width, float viewport_height, gyro_scene_hit* out);
+
+/* ------------------------------------------------------------------ dynamics world (ABI 1.2) */
+
+/** Rigid bodies, contacts and the solver (conventions of gyro/world.hpp): SI units, gravity
+ *  (0, -9.81, 0) by default, quaternions (x, y, z, w) rotating body-local vectors into the
+ *  world. Present when gyro_features() has GYRO_FEATURE_DYNAMICS.
+ *  - Every call with a stale id (a destroyed body, or the null id) returns
+ *    GYRO_STATUS_STALE_ID and changes nothing.
+ *  - Bad input (NULL, NaN or infinite values, a wrong struct_size, an unknown enum value, a
+ *    boolean other than 0 or 1, a non-zero reserved field, dt <= 0) gets a status and changes
+ *    nothing: the world's state and gyro_world_hash() are as before the call.
+ *  - The state after every step is bit-identical at every SIMD level and thread count;
+ *    gyro_world_hash() is the witness.
+ *  - One world must not be used from two threads at once; separate worlds may step in
+ *    parallel. */
+typedef struct gyro_world gyro_world;
+
+typedef struct gyro_vec3 {
+  float x, y, z;
+} gyro_vec3;
+
+/** A rotation (x, y, z, w); w is the scalar part. Normalised on input; must not be zero. */
+typedef struct gyro_quat {
+  float x, y, z, w;
+} gyro_quat;
+
+/** A body's id; all-zero is null. Ordered by index, then generation. */
+typedef struct gyro_body_id {
+  uint32_t index;
+  uint32_t generation;
+} gyro_body_id;
+
+typedef uint32_t gyro_body_type;
+enum {
+  GYRO_BODY_STATIC = 0,    /**< never moves; infinite mass */
+  GYRO_BODY_KINEMATIC = 1, /**< moves by its velocity only; pushes dynamic bodies */
+  GYRO_BODY_DYNAMIC = 2    /**< moved by forces, gravity and contacts */
+};
+
+typedef uint32_t gyro_body_shape;
+enum {
+  GYRO_BODY_SHAPE_SPHERE = 0, /**< radius, centred on the body's origin */
+  GYRO_BODY_SHAPE_BOX = 1,    /**< half_extents, centred on the body's origin */
+  GYRO_BODY_SHAPE_PLANE = 2,  /**< static only: the body frame's y = 0 plane, normal +y */
+  GYRO_BODY_SHAPE_MESH = 3    /**< static only: mesh, in the body's frame */
+};
+
+/** How contacts correct position errors. */
+typedef uint32_t gyro_contact_model;
+enum {
+  GYRO_CONTACT_SOFT_STEP = 0,        /**< sub-steps, soft constraints, relaxation (default) */
+  GYRO_CONTACT_BAUMGARTE = 1,        /**< Baumgarte bias with slop in the velocity iterations */
+  GYRO_CONTACT_LINEAR_PROJECTION = 2 /**< no bias; positions projected apart after the step */
+};
+
+/** The world's settings (gyro::WorldDef). Booleans are 0 or 1. */
+typedef struct gyro_world_def {
+  uint32_t struct_size; /**< sizeof(gyro_world_def): set by gyro_world_def_default */
+  gyro_contact_model contact_model;
+  gyro_vec3 gravity;
+  uint32_t substeps;            /**< soft step only (1..64); the other models run 1 */
+  uint32_t velocity_iterations; /**< per sub-step (soft step) or per step (others: try 10) */
+  uint32_t relax_iterations;    /**< soft step: iterations without bias after each sub-step */
+  uint32_t position_iterations; /**< linear projection passes */
+  float linear_slop;            /**< m of penetration left uncorrected */
+  float baumgarte;              /**< Baumgarte / linear projection: fraction corrected per step */
+  float contact_hertz;          /**< soft step: stiffness of the contact softness */
+  float contact_damping_ratio;
+  float max_push_velocity;      /**< m/s: cap on the speed penetration is resolved with */
+  float restitution_threshold;  /**< m/s: slower approaches do not bounce */
+  uint32_t enable_warm_starting;
+  uint32_t enable_sleep;
+  float sleep_time;             /**< s a whole island must rest before it sleeps */
+  float sleep_linear_velocity;  /**< m/s */
+  float sleep_angular_velocity; /**< rad/s */
+  uint32_t enable_continuous;   /**< speculative contacts sized by the motion of the step */
+  uint32_t threads;             /**< 0: gyro_get_thread_count() */
+} gyro_world_def;
+
+/** gyro::WorldDef's defaults: soft step, 4 sub-steps, 1 velocity iteration, sleep on. */
+GYRO_API gyro_world_def gyro_world_def_default(void);
+/** Errors (*out untouched): NULL_ARGUMENT, NON_FINITE, INVALID_ARGUMENT (struct_size,
+ *  contact_model, a boolean, iterations or sub-steps outside 1..64, negative slop, ...). */
+GYRO_API gyro_status gyro_world_create(const gyro_world_def* def, gyro_world** out);
+/** Destroys the world and its bodies (releasing their mesh references). NULL is fine. */
+GYRO_API void gyro_world_destroy(gyro_world* world);
+/** Advances the world by dt seconds. Errors (nothing changed): NULL_ARGUMENT, NON_FINITE
+ *  (dt NaN or infinite), INVALID_ARGUMENT (dt <= 0). */
+GYRO_API gyro_status gyro_world_step(gyro_world* world, float dt);
+/** The 64-bit witness of the whole state (every state column, the contacts' accumulated
+ *  impulses, the id allocator): equal hashes for equal call sequences. */
+GYRO_API gyro_status gyro_world_hash(const gyro_world* world, uint64_t* out);
+GYRO_API gyro_status gyro_world_body_count(const gyro_world* world, int32_t* out);
+
+/** A body's definition (gyro::BodyDef). Booleans are 0 or 1. */
+typedef struct gyro_body_def {
+  uint32_t struct_size; /**< sizeof(gyro_body_def): set by gyro_body_def_default */
+  gyro_body_type type;
+  gyro_body_shape shape;
+  float radius;           /**< sphere, > 0 */
+  gyro_vec3 half_extents; /**< box, each > 0 */
+  gyro_vec3 position;
+  gyro_quat orientation;
+  gyro_vec3 linear_velocity;
+  gyro_vec3 angular_velocity; /**< world frame, rad/s */
+  float density;              /**< kg/m^3, used when mass is 0 */
+  float mass;                 /**< kg; > 0 overrides density (inertia scales with it) */
+  float friction;             /**< Coulomb coefficient; a pair uses sqrt(fa * fb) */
+  float restitution;          /**< a pair uses max(ea, eb) */
+  float linear_damping;       /**< 1/s */
+  float angular_damping;      /**< 1/s */
+  float gravity_scale;
+  uint32_t category; /**< a pair collides when (catA & maskB) != 0 and (catB & maskA) != 0 */
+  uint32_t mask;
+  uint32_t allow_sleep;
+  uint32_t awake;
+  uint32_t reserved; /**< 0 */
+  uint64_t user_data;
+  /** GYRO_BODY_SHAPE_MESH: the world keeps its own reference until the body is destroyed,
+   *  so the caller may gyro_mesh_destroy its handle at once. NULL for other shapes. */
+  const gyro_mesh* mesh;
+} gyro_body_def;
+
+/** A dynamic unit box (half extents 0.5, density 1: 1 kg) at the origin, at rest, awake,
+ *  friction 0.6, restitution 0, colliding with everything. */
+GYRO_API gyro_body_def gyro_body_def_default(void);
+/** Errors (*out untouched, the world unchanged): NULL_ARGUMENT (def, out, or the mesh of a
+ *  mesh body), NON_FINITE, INVALID_ARGUMENT (struct_size, an unknown type or shape, a
+ *  boolean, reserved, a negative mass, a dynamic body with neither mass nor density > 0, a
+ *  zero-size shape, a zero quaternion, a plane or mesh on a non-static body, a mesh given
+ *  for another shape). */
+GYRO_API gyro_status gyro_body_create(gyro_world* world, const gyro_body_def* def, gyro_body_id* out);
+/** The id becomes stale. */
+GYRO_API gyro_status gyro_body_destroy(gyro_world* world, gyro_body_id id);
+/** 1 if id names a live body of the world, else 0 (also for a NULL world). */
+GYRO_API uint32_t gyro_body_is_valid(const gyro_world* world, gyro_body_id id);
+
+GYRO_API gyro_status gyro_body_get_transform(const gyro_world* world, gyro_body_id id, gyro_vec3* position,
+                                             gyro_quat* orientation);
+/** Teleports the body (and wakes it); contacts are recomputed next step. */
+GYRO_API gyro_status gyro_body_set_transform(gyro_world* world, gyro_body_id id, gyro_vec3 position,
+                                             gyro_quat orientation);
+GYRO_API gyro_status gyro_body_get_velocity(const gyro_world* world, gyro_body_id id, gyro_vec3* linear,
+                                            gyro_vec3* angular);
+GYRO_API gyro_status gyro_body_set_velocity(gyro_world* world, gyro_body_id id, gyro_vec3 linear, gyro_vec3 angular);
+/** 0 for static and kinematic bodies. */
+GYRO_API gyro_status gyro_body_get_mass(const gyro_world* world, gyro_body_id id, float* out);
+GYRO_API gyro_status gyro_body_get_type(const gyro_world* world, gyro_body_id id, gyro_body_type* out);
+GYRO_API gyro_status gyro_body_get_user_data(const gyro_world* world, gyro_body_id id, uint64_t* out);
+
+/** Forces and torques act during the next step only. */
+GYRO_API gyro_status gyro_body_apply_force(gyro_world* world, gyro_body_id id, gyro_vec3 force, gyro_vec3 world_point);
+GYRO_API gyro_status gyro_body_apply_force_at_center(gyro_world* world, gyro_body_id id, gyro_vec3 force);
+GYRO_API gyro_status gyro_body_apply_torque(gyro_world* world, gyro_body_id id, gyro_vec3 torque);
+/** Impulses change the velocity at once. */
+GYRO_API gyro_status gyro_body_apply_linear_impulse(gyro_world* world, gyro_body_id id, gyro_vec3 impulse,
+                                                    gyro_vec3 world_point);
+GYRO_API gyro_status gyro_body_apply_angular_impulse(gyro_world* world, gyro_body_id id, gyro_vec3 impulse);
+
+/** awake: 0 or 1. */
+GYRO_API gyro_status gyro_body_set_awake(gyro_world* world, gyro_body_id id, uint32_t awake);
+GYRO_API gyro_status gyro_body_is_awake(const gyro_world* world, gyro_body_id id, uint32_t* out);
+
+/** Zero-copy views of the bodies' state, dense slots 0..count-1 (ids[i] names slot i).
+ *  Valid until the next gyro_body_create, gyro_body_destroy, gyro_world_step or
+ *  gyro_world_destroy; read only. */
+typedef struct gyro_body_view {
+  int32_t count;
+  uint32_t reserved; /**< 0 */
+  const gyro_body_id* ids;
+  const float *px, *py, *pz;
+  const float *qx, *qy, *qz, *qw;
+  const float *vx, *vy, *vz;
+  const float *wx, *wy, *wz;
+} gyro_body_view;
+
+GYRO_API gyro_status gyro_world_get_body_view(const gyro_world* world, gyro_body_view* out);
+
+/** Milliseconds spent in each stage of the last step (0 for a skipped stage). */
+typedef struct gyro_step_timings {
+  double forces, broadphase, narrowphase, islands, solver, particles, total;
+} gyro_step_timings;
+
+/** Counters of the last step. */
+typedef struct gyro_step_stats {
+  uint32_t bodies, awake_bodies;
+  uint32_t pairs;     /**< broadphase pairs */
+  uint32_t manifolds; /**< manifolds with at least one point */
+  uint32_t contacts;  /**< contact points */
+  uint32_t colors;    /**< constraint graph colours used by the solver */
+  uint32_t islands;   /**< islands of touching awake bodies */
+  uint32_t reserved;  /**< 0 */
+} gyro_step_stats;
+
+GYRO_API gyro_status gyro_world_get_timings(const gyro_world* world, gyro_step_timings* out);
+GYRO_API gyro_status gyro_world_get_stats(const gyro_world* world, gyro_step_stats* out);
+
+/** A pair of bodies that started or stopped touching (a < b in id order). */
+typedef struct gyro_contact_event {
+  gyro_body_id a, b;
+} gyro_contact_event;
+
+/** The last step's contact events, sorted by (a, b): zero-copy arrays valid until the next
+ *  gyro_world_step or gyro_world_destroy (NULL when the count is 0). */
+typedef struct gyro_contact_events {
+  const gyro_contact_event* begin;
+  const gyro_contact_event* end;
+  int32_t begin_count;
+  int32_t end_count;
+} gyro_contact_events;
+
+GYRO_API gyro_status gyro_world_get_contact_events(const gyro_world* world, gyro_contact_events* out);
 
 #ifdef __cplusplus
 }

@@ -65,6 +65,9 @@ GYRO_API uint32_t gyro_features(void) {
 #if defined(GYRO_HAS_SPATIAL)
   f |= GYRO_FEATURE_SPATIAL;
 #endif
+#if defined(GYRO_HAS_DYNAMICS)
+  f |= GYRO_FEATURE_DYNAMICS;
+#endif
   return f;
 }
 

@@ -61,6 +61,12 @@ class TriangleMesh {
   Triangle triangle(std::size_t i) const;
   AABB bounds() const;
   BvhStats stats() const;
+  /// The number of triangles whose bounds (the box of their corners) touch `box`, closed
+  /// (touching counts), with box's corners as aabb_min(box) and aabb_max(box) round them;
+  /// writes the smallest min(count, capacity) of their indices to out in ascending order, so
+  /// the answer is the brute-force one whatever the tree's shape. No allocation. A mesh that
+  /// was never created, or a box with a NaN, gives 0.
+  std::size_t triangles_overlapping(const AABB& box, uint32_t* out, std::size_t capacity) const;
 
   struct Impl;
   const Impl* impl() const { return impl_.get(); }

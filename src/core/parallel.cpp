@@ -29,12 +29,14 @@ uint32_t default_threads() {
 }
 
 std::atomic<uint32_t> g_threads{0};  // 0: default
+thread_local uint32_t t_threads = 0;  // a ScopedThreadCount's override, 0: none
 
 }  // namespace
 
 uint32_t thread_count() {
 #if defined(GYRO_HAS_OPENMP)
   static const uint32_t initial = default_threads();
+  if (t_threads != 0) return t_threads;
   uint32_t t = g_threads.load(std::memory_order_relaxed);
   return t != 0 ? t : initial;
 #else
@@ -57,6 +59,11 @@ bool has_threads() {
 }
 
 namespace detail {
+
+ScopedThreadCount::ScopedThreadCount(uint32_t threads) : saved_(t_threads) {
+  if (threads != 0) t_threads = threads;
+}
+ScopedThreadCount::~ScopedThreadCount() { t_threads = saved_; }
 
 void parallel_for_chunks(std::size_t n, std::size_t chunk, ChunkFn fn, void* context) {
   if (n == 0) return;

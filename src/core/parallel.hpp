@@ -11,10 +11,24 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <span>
 #include <utility>
 
 namespace gyro::detail {
+
+/// Overrides the thread count for this thread's parallel loops while it lives (0 keeps the
+/// process setting): how a world's own thread count applies to its step.
+class ScopedThreadCount {
+ public:
+  explicit ScopedThreadCount(uint32_t threads);
+  ~ScopedThreadCount();
+  ScopedThreadCount(const ScopedThreadCount&) = delete;
+  ScopedThreadCount& operator=(const ScopedThreadCount&) = delete;
+
+ private:
+  uint32_t saved_;
+};
 
 using ChunkFn = void (*)(void* context, std::size_t begin, std::size_t end);
 

@@ -52,8 +52,8 @@ void trace(const TriangleMesh::Impl& m, const Ray& ray, float tmin, float tmax, 
   GYRO_DISPATCH(bvh_raycast)(args, 0, 1);
 }
 
-// Calls leaf(triangle index) for every triangle in a leaf whose box overlaps [lo, hi], until
-// it returns true; returns whether it did.
+// Calls leaf(block, lane) for every triangle in a leaf whose box overlaps [lo, hi] (closed),
+// until it returns true; returns whether it did.
 template <class Leaf> bool any_in_box(const TriangleMesh::Impl& m, const vec3& lo, const vec3& hi, Leaf&& leaf) {
   const detail::Bvh8& bvh = m.bvh;
   uint32_t stack[detail::kBvhStackSize];
@@ -65,7 +65,7 @@ template <class Leaf> bool any_in_box(const TriangleMesh::Impl& m, const vec3& l
     if (code & detail::kLeafBit) {
       const detail::BvhLeaf4& l = bvh.leaves[code & ~detail::kLeafBit];
       for (int k = 0; k < 4; ++k)
-        if (l.triangle[k] != detail::kNoTriangle && leaf(l.triangle[k])) return true;
+        if (l.triangle[k] != detail::kNoTriangle && leaf(l, k)) return true;
       continue;
     }
     const detail::BvhNode8& node = bvh.nodes[code];
@@ -92,7 +92,8 @@ template <class Shape> bool overlaps_any(const TriangleMesh& mesh, const Shape& 
   if (mesh.empty()) return false;
   widen(lo, hi);
   const auto& m = *mesh.impl();
-  return any_in_box(m, lo, hi, [&](uint32_t t) { return overlaps(m.mesh.triangle(t), shape); });
+  return any_in_box(m, lo, hi,
+                    [&](const detail::BvhLeaf4& l, int k) { return overlaps(m.mesh.triangle(l.triangle[k]), shape); });
 }
 
 Status run_batch(const TriangleMesh& mesh, const RaysView& rays, std::size_t ray_count, const HitsOut& hits, bool any) {
@@ -150,6 +151,33 @@ Triangle TriangleMesh::triangle(std::size_t i) const { return impl_->mesh.triang
 AABB TriangleMesh::bounds() const { return impl_ ? impl_->bvh.bounds : AABB{{0, 0, 0}, {0, 0, 0}}; }
 BvhStats TriangleMesh::stats() const { return impl_ ? impl_->bvh.stats : BvhStats{}; }
 
+std::size_t TriangleMesh::triangles_overlapping(const AABB& box, uint32_t* out, std::size_t capacity) const {
+  if (!impl_) return 0;
+  const vec3 lo = aabb_min(box), hi = aabb_max(box);
+  std::size_t count = 0;
+  // out[0, min(count, capacity)) is a max-heap of the smallest indices found so far, so the
+  // kept set, and after sorting the output, does not depend on the traversal order.
+  any_in_box(*impl_, lo, hi, [&](const detail::BvhLeaf4& l, int k) {
+    for (int a = 0; a < 3; ++a) {
+      const float p = l.corner[a][k], q = l.corner[3 + a][k], r = l.corner[6 + a][k];
+      if (!(std::min({p, q, r}) <= hi[a] && lo[a] <= std::max({p, q, r}))) return false;
+    }
+    const uint32_t t = l.triangle[k];
+    if (count < capacity) {
+      out[count] = t;
+      std::push_heap(out, out + count + 1);
+    } else if (capacity > 0 && t < out[0]) {
+      std::pop_heap(out, out + capacity);
+      out[capacity - 1] = t;
+      std::push_heap(out, out + capacity);
+    }
+    ++count;
+    return false;
+  });
+  std::sort_heap(out, out + std::min(count, capacity));
+  return count;
+}
+
 MeshHit raycast(const TriangleMesh& mesh, const Ray& ray, float tmin, float tmax) {
   MeshHit out;
   if (mesh.empty()) return out;
@@ -179,7 +207,9 @@ bool linetest(const TriangleMesh& mesh, const Line& line) {
     vec3 lo = line.start, hi = line.start;
     widen(lo, hi);
     const auto& m = *mesh.impl();
-    return any_in_box(m, lo, hi, [&](uint32_t t) { return contains(m.mesh.triangle(t), line.start); });
+    return any_in_box(m, lo, hi, [&](const detail::BvhLeaf4& l, int k) {
+      return contains(m.mesh.triangle(l.triangle[k]), line.start);
+    });
   }
   return raycast_any(mesh, ray_from_points(line.start, line.end), 0.0f, 1.0f);
 }

@@ -15,6 +15,9 @@
 #include "spatial/bvh.hpp"
 #endif
 #include "workloads.hpp"
+#if defined(GYRO_HAS_DYNAMICS)
+#include "gyro/world.hpp"
+#endif
 
 #include <bit>
 #include <cmath>
@@ -382,6 +385,78 @@ uint64_t scene_camera_frustum() {
 }
 #endif
 
+
+#if defined(GYRO_HAS_DYNAMICS)
+// Rigid bodies in every configuration a step handles: a plane, a static box, a static
+// triangle-mesh ramp, a small pyramid, spheres that bounce, a spinning kinematic paddle, a
+// body destroyed mid-run, sleeping, and each contact model. Hashes the world every 10 steps.
+uint64_t scene_world_pile() {
+  detail::StateHasher h;
+  static const TriangleMesh ramp = [] {
+    TriangleMesh m;
+    MeshData grid = make_grid_mesh(6, 6, 1.0f, [](float x, float z, void*) { return 0.15f * x + 0.05f * z; });
+    TriangleMesh::create(grid, m);
+    return m;
+  }();
+  for (ContactModel model : {ContactModel::soft_step, ContactModel::baumgarte, ContactModel::linear_projection}) {
+    WorldDef def;
+    def.contact_model = model;
+    if (model != ContactModel::soft_step) def.velocity_iterations = 8;
+    std::unique_ptr<World> w;
+    if (World::create(def, &w) != Status::ok) return 0;
+    BodyId id;
+    BodyDef d;
+    d.type = BodyType::static_body;
+    d.shape.type = BodyShape::plane;
+    if (w->create_body(d, &id) != Status::ok) return 0;
+    d.shape.type = BodyShape::mesh;
+    d.shape.mesh = &ramp;
+    d.position = {4.0f, 0.01f, -3.0f};
+    if (w->create_body(d, &id) != Status::ok) return 0;
+    d = BodyDef{};
+    d.type = BodyType::kinematic;
+    d.shape.half_extents = {2.0f, 0.1f, 0.3f};
+    d.position = {-4.0f, 0.6f, 0.0f};
+    d.angular_velocity = {0.0f, 1.5f, 0.0f};
+    if (w->create_body(d, &id) != Status::ok) return 0;
+    std::vector<BodyId> bodies;
+    for (int row = 0; row < 4; ++row)
+      for (int k = 0; k < 4 - row; ++k) {
+        BodyDef b;
+        b.shape.half_extents = {0.4f, 0.4f, 0.4f};
+        b.position = {(float(k) - float(3 - row) * 0.5f) * 0.85f, 0.4f + 0.8f * float(row), 0.0f};
+        b.density = 2.0f;
+        if (w->create_body(b, &id) != Status::ok) return 0;
+        bodies.push_back(id);
+      }
+    SplitMix64 rng(77);
+    for (int k = 0; k < 12; ++k) {
+      const float r[5] = {float(rng.u()), float(rng.u()), float(rng.u()), float(rng.u()),
+                          float(rng.u())};
+      BodyDef b;
+      b.shape.type = k % 3 == 0 ? BodyShape::box : BodyShape::sphere;
+      b.shape.radius = 0.2f + 0.2f * r[0];
+      b.shape.half_extents = {0.2f + 0.2f * r[0], 0.3f, 0.25f};
+      b.position = {8.0f * r[1] - 4.0f, 3.0f + 4.0f * r[2], 6.0f * r[3] - 3.0f};
+      b.orientation = from_axis_angle({r[1], 1.0f, r[3]}, 3.0f * r[4]);
+      b.restitution = 0.4f * r[4];
+      b.friction = 0.3f + 0.5f * r[0];
+      b.angular_velocity = {r[2] - 0.5f, 0.0f, r[3] - 0.5f};
+      if (w->create_body(b, &id) != Status::ok) return 0;
+      bodies.push_back(id);
+    }
+    for (int step = 1; step <= 240; ++step) {
+      if (step == 40 && w->destroy_body(bodies[3]) != Status::ok) return 0;
+      if (step == 80 && w->apply_linear_impulse(bodies[12], {2.0f, 3.0f, 0.0f}, {0.0f, 5.0f, 0.0f}) != Status::ok)
+        return 0;
+      if (w->step(1.0f / 60.0f) != Status::ok) return 0;
+      if (step % 10 == 0) h.add_u64(w->hash());
+    }
+  }
+  return h.digest();
+}
+#endif
+
 const DetScene kScenes[] = {
     {"trig", scene_trig, 0x69125c38406c536bull},
     {"r1s_2k", scene_r1s_2k, 0x8ef0b58be8aab651ull},
@@ -393,6 +468,9 @@ const DetScene kScenes[] = {
     {"mesh_bvh", scene_mesh_bvh, 0x443954b2125dc999ull},
     {"camera_frustum", scene_camera_frustum, 0x246ff5bf8a6a766cull},
     {"scene_models", scene_models, 0xf0754d52193f4864ull},
+#endif
+#if defined(GYRO_HAS_DYNAMICS)
+    {"world_pile", scene_world_pile, 0x1f0873f657c5a90bull},
 #endif
 };
 

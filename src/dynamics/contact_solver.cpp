@@ -1,0 +1,228 @@
+#include "dynamics/contact_solver.hpp"
+
+#include "core/parallel.hpp"
+
+#include <cmath>
+
+namespace gyro::detail {
+namespace {
+
+constexpr uint32_t kNoRecord = 0xFFFFFFFFu;
+constexpr std::size_t kSolveChunk = 128;  // constraints per parallel chunk (a multiple of 16)
+
+// Box2D v3's soft constraint coefficients for a spring of `hertz` with damping ratio `zeta`
+// stepped implicitly with sub-step h.
+Softness make_soft(float hertz, float zeta, float h) {
+  if (hertz == 0.0f) return {};
+  const float omega = 6.28318530717958648f * hertz;
+  const float a1 = 2.0f * zeta + h * omega;
+  const float a2 = h * omega * a1;
+  const float a3 = 1.0f / (1.0f + a2);
+  return {omega / a1, a2 * a3, a3};
+}
+
+// A deterministic friction basis from the normal alone (the same normal always gives the same
+// tangents, so impulses carried over from last step point the same way).
+void tangents(const vec3& n, vec3* t1, vec3* t2) {
+  vec3 t = std::abs(n.x) >= 0.57735f ? vec3{n.y, -n.x, 0.0f} : vec3{0.0f, n.z, -n.y};
+  t = t / std::sqrt(dot(t, t));
+  *t1 = t;
+  *t2 = cross(n, t);
+}
+
+vec3 sym_mul(const float* m, const vec3& x) {
+  return {(m[0] * x.x + m[1] * x.y) + m[2] * x.z, (m[1] * x.x + m[3] * x.y) + m[4] * x.z,
+          (m[2] * x.x + m[4] * x.y) + m[5] * x.z};
+}
+
+float effective_mass(float ma, float mb, const float* ia, const float* ib, const vec3& ra, const vec3& rb,
+                     const vec3& d) {
+  const vec3 rna = cross(ra, d), rnb = cross(rb, d);
+  const float k = (ma + mb) + (dot(rna, sym_mul(ia, rna)) + dot(rnb, sym_mul(ib, rnb)));
+  return k > 0.0f ? 1.0f / k : 0.0f;
+}
+
+vec3 body_v(const SolverBody& b) { return {b.v[0], b.v[1], b.v[2]}; }
+vec3 body_w(const SolverBody& b) { return {b.w[0], b.w[1], b.w[2]}; }
+
+}  // namespace
+
+uint32_t ContactSolver::prepare(const BodyStore& s, const std::vector<ContactRecord>& records, const SolverBodies& sb,
+                                const WorldDef& def, float dt, float h) {
+  sb_ = sb;
+  def_ = &def;
+  passes_ = 0;
+  dt_ = dt, h_ = h;
+  // 1. Constraints: records with points that involve at least one solver body that moves.
+  record_.clear(), cand_a_.clear(), cand_b_.clear();
+  for (uint32_t r = 0; r < records.size(); ++r) {
+    const ContactRecord& rec = records[r];
+    if (rec.manifold.count == 0) continue;
+    const uint32_t a = sb.index_of_slot[rec.slot_a], b = sb.index_of_slot[rec.slot_b];
+    if (!sb.writable[a] && !sb.writable[b]) continue;
+    record_.push_back(r), cand_a_.push_back(a), cand_b_.push_back(b);
+  }
+  count_ = record_.size();
+
+  // 2. Colours, and the padded SoA layout.
+  graph_.color(cand_a_.data(), cand_b_.data(), count_, sb.writable, sb.count + 1, kConstraintAlign, plan_);
+  const std::size_t slots = plan_.padded_total;
+  body_a_.resize(slots, sb.dummy()), body_b_.resize(slots, sb.dummy());
+  record_of_slot_.resize(slots, kNoRecord);
+  for (std::size_t k = 0; k < slots; ++k) body_a_[k] = body_b_[k] = sb.dummy(), record_of_slot_[k] = kNoRecord;
+  for (uint32_t c = 0; c < plan_.colors(); ++c) {
+    for (uint32_t k = plan_.color_first[c]; k < plan_.color_first[c + 1]; ++k) {
+      const uint32_t slot = plan_.padded_first[c] + (k - plan_.color_first[c]);
+      const uint32_t i = plan_.order[k];
+      body_a_[slot] = cand_a_[i], body_b_[slot] = cand_b_[i], record_of_slot_[slot] = record_[i];
+    }
+  }
+  for (uint32_t f = 0; f < kConstraintFields; ++f) {
+    fields_[f].resize(slots, 0.0f);
+    field_ptrs_[f] = fields_[f].data();
+  }
+
+  // 3. Fields, in parallel over fixed chunks of slots (each slot writes only its own).
+  const bool warm = def.enable_warm_starting;
+  parallel_for(slots, 256, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t k = begin; k < end; ++k) {
+      float* const* f = field_ptrs_.data();
+      for (uint32_t x = 0; x < kConstraintFields; ++x) f[x][k] = 0.0f;
+      const uint32_t r = record_of_slot_[k];
+      if (r == kNoRecord) continue;
+      const ContactRecord& rec = records[r];
+      const uint32_t a = body_a_[k], b = body_b_[k];
+      const float ma = sb.inv_mass[a], mb = sb.inv_mass[b];
+      const float* ia = sb.inv_inertia + 6 * std::size_t(a);
+      const float* ib = sb.inv_inertia + 6 * std::size_t(b);
+      const vec3 n = rec.manifold.normal;
+      vec3 t1, t2;
+      tangents(n, &t1, &t2);
+      f[kNx][k] = n.x, f[kNy][k] = n.y, f[kNz][k] = n.z;
+      f[kT1x][k] = t1.x, f[kT1y][k] = t1.y, f[kT1z][k] = t1.z;
+      f[kT2x][k] = t2.x, f[kT2y][k] = t2.y, f[kT2z][k] = t2.z;
+      f[kFriction][k] = rec.friction, f[kRestitution][k] = rec.restitution;
+      f[kMassA][k] = ma, f[kMassB][k] = mb;
+      for (uint32_t x = 0; x < 6; ++x) f[kIa0 + x][k] = ia[x], f[kIb0 + x][k] = ib[x];
+      const vec3 pa = s.position(rec.slot_a), pb = s.position(rec.slot_b);
+      const SolverBody &ba = sb.bodies[a], &bb = sb.bodies[b];
+      for (uint32_t j = 0; j < rec.manifold.count; ++j) {
+        const ContactPoint& cp = rec.manifold.points[j];
+        const vec3 ra = cp.position - pa, rb = cp.position - pb;
+        f[point_field(j, kRax)][k] = ra.x, f[point_field(j, kRay)][k] = ra.y, f[point_field(j, kRaz)][k] = ra.z;
+        f[point_field(j, kRbx)][k] = rb.x, f[point_field(j, kRby)][k] = rb.y, f[point_field(j, kRbz)][k] = rb.z;
+        f[point_field(j, kSeparation)][k] = cp.separation - dot(rb - ra, n);
+        f[point_field(j, kNormalMass)][k] = effective_mass(ma, mb, ia, ib, ra, rb, n);
+        f[point_field(j, kTangentMass1)][k] = effective_mass(ma, mb, ia, ib, ra, rb, t1);
+        f[point_field(j, kTangentMass2)][k] = effective_mass(ma, mb, ia, ib, ra, rb, t2);
+        if (warm) {
+          f[point_field(j, kNormalImpulse)][k] = rec.normal_impulse[j];
+          f[point_field(j, kTangentImpulse1)][k] = rec.tangent_impulse1[j];
+          f[point_field(j, kTangentImpulse2)][k] = rec.tangent_impulse2[j];
+        }
+        const vec3 dv = (body_v(bb) + cross(body_w(bb), rb)) - (body_v(ba) + cross(body_w(ba), ra));
+        f[point_field(j, kRelativeVelocity)][k] = dot(dv, n);
+      }
+    }
+  });
+  return plan_.colors();
+}
+
+ContactKernelArgs ContactSolver::args_for(BiasMode mode) const {
+  ContactKernelArgs a;
+  a.bodies = sb_.bodies;
+  a.body_a = body_a_.data(), a.body_b = body_b_.data();
+  a.f = field_ptrs_.data();
+  a.mode = mode;
+  a.inv_h = 1.0f / h_;
+  const float hertz = def_->contact_hertz < 0.25f * a.inv_h ? def_->contact_hertz : 0.25f * a.inv_h;
+  a.soft = make_soft(hertz, def_->contact_damping_ratio, h_);
+  a.soft_static = make_soft(2.0f * hertz, def_->contact_damping_ratio, h_);
+  a.baumgarte_rate = def_->baumgarte * a.inv_h;
+  a.slop = def_->linear_slop;
+  a.max_push = def_->max_push_velocity;
+  a.restitution_threshold = def_->restitution_threshold;
+  return a;
+}
+
+void ContactSolver::run(contact_pass_fn* pass, const ContactKernelArgs& args) const {
+  for (uint32_t c = 0; c < plan_.colors(); ++c) {
+    const std::size_t first = plan_.padded_first[c], n = plan_.padded_first[c + 1] - first;
+    parallel_for(n, kSolveChunk, [&](std::size_t b, std::size_t e) { pass(args, first + b, first + e); });
+  }
+}
+
+void ContactSolver::warm_start() {
+  if (count_ == 0 || !def_->enable_warm_starting) return;
+  run(GYRO_DISPATCH(contact_warm_start), args_for(BiasMode::none));
+}
+
+void ContactSolver::solve(BiasMode mode) {
+  if (count_ == 0) return;
+  // Alternating the point order makes Gauss-Seidel symmetric over two passes: a fixed order
+  // leaves a small torque on a resting box every pass (the first point takes more load),
+  // which tilts tall stacks.
+  ContactKernelArgs args = args_for(mode);
+  args.reverse = passes_++ & 1u;
+  run(GYRO_DISPATCH(contact_solve), args);
+}
+
+void ContactSolver::restitution() {
+  if (count_ == 0) return;
+  run(GYRO_DISPATCH(contact_restitution), args_for(BiasMode::none));
+}
+
+void ContactSolver::project_positions(BodyStore& s, const uint32_t* slot_of_body) {
+  if (count_ == 0) return;
+  const float slop = def_->linear_slop, percent = def_->baumgarte;
+  float* const* f = field_ptrs_.data();
+  for (uint32_t c = 0; c < plan_.colors(); ++c) {
+    const std::size_t first = plan_.padded_first[c], n = plan_.padded_first[c + 1] - first;
+    parallel_for(n, kSolveChunk, [&](std::size_t b, std::size_t e) {
+      for (std::size_t k = first + b; k < first + e; ++k) {
+        if (record_of_slot_[k] == kNoRecord) continue;
+        SolverBody &ba = sb_.bodies[body_a_[k]], &bb = sb_.bodies[body_b_[k]];
+        const float ma = f[kMassA][k], mb = f[kMassB][k];
+        if (!(ma + mb > 0.0f)) continue;
+        const vec3 nrm{f[kNx][k], f[kNy][k], f[kNz][k]};
+        const vec3 d0 = vec3{bb.dp[0], bb.dp[1], bb.dp[2]} - vec3{ba.dp[0], ba.dp[1], ba.dp[2]};
+        const quat qa{ba.dq[0], ba.dq[1], ba.dq[2], ba.dq[3]}, qb{bb.dq[0], bb.dq[1], bb.dq[2], bb.dq[3]};
+        float deepest = 0.0f;
+        for (uint32_t j = 0; j < 4; ++j) {
+          if (f[point_field(j, kNormalMass)][k] == 0.0f) continue;
+          const vec3 ra{f[point_field(j, kRax)][k], f[point_field(j, kRay)][k], f[point_field(j, kRaz)][k]};
+          const vec3 rb{f[point_field(j, kRbx)][k], f[point_field(j, kRby)][k], f[point_field(j, kRbz)][k]};
+          const float sep = dot(d0 + (rotate(qb, rb) - rotate(qa, ra)), nrm) + f[point_field(j, kSeparation)][k];
+          deepest = sep < deepest ? sep : deepest;
+        }
+        const float depth = -(deepest + slop);
+        if (!(depth > 0.0f)) continue;
+        const vec3 corr = nrm * (depth * percent / (ma + mb));
+        auto move = [&](SolverBody& body, uint32_t solver_index, const vec3& delta) {
+          if (!body.dynamic) return;
+          body.dp[0] += delta.x, body.dp[1] += delta.y, body.dp[2] += delta.z;
+          const uint32_t slot = slot_of_body[solver_index];
+          s.px[slot] += delta.x, s.py[slot] += delta.y, s.pz[slot] += delta.z;
+        };
+        move(ba, body_a_[k], corr * -ma);
+        move(bb, body_b_[k], corr * mb);
+      }
+    });
+  }
+}
+
+void ContactSolver::store_impulses(std::vector<ContactRecord>& records) const {
+  const float* const* f = field_ptrs_.data();
+  for (std::size_t k = 0; k < plan_.padded_total; ++k) {
+    const uint32_t r = record_of_slot_[k];
+    if (r == kNoRecord) continue;
+    ContactRecord& rec = records[r];
+    for (uint32_t j = 0; j < rec.manifold.count; ++j) {
+      rec.normal_impulse[j] = f[point_field(j, kNormalImpulse)][k];
+      rec.tangent_impulse1[j] = f[point_field(j, kTangentImpulse1)][k];
+      rec.tangent_impulse2[j] = f[point_field(j, kTangentImpulse2)][k];
+    }
+  }
+}
+
+}  // namespace gyro::detail

@@ -1,0 +1,148 @@
+// The contact solver: sequential impulses with accumulated, clamped totals (the appendix's
+// arbiters), warm starting, Coulomb friction along two tangents and restitution, run colour
+// by colour so every pass is parallel and deterministic.
+//
+// Layout: constraints live in structure-of-arrays fields, one colour after another, each
+// colour's range padded with inert constraints, so a SIMD batch never spans two colours.
+// Within a colour no two constraints share a dynamic body, so a kernel may solve
+// them in any grouping: lane k computes exactly what the scalar path computes for
+// constraint k, and the result is the same at every SIMD width and thread count.
+//
+// Body state during the step is a dense array of SolverBody (one cache line each: a
+// constraint gathers two of them). Index `dummy` is a body that never moves (static or
+// sleeping bodies map to it); only bodies flagged dynamic are written back.
+#pragma once
+
+#include "core/dispatch.hpp"
+
+#include <cstddef>
+#include <cstdint>
+
+namespace gyro {
+namespace detail {
+
+inline constexpr std::size_t kConstraintAlign = 16;
+
+struct alignas(64) SolverBody {
+  float v[3];    ///< linear velocity
+  float w[3];    ///< angular velocity (world)
+  float dp[3];   ///< displacement since the start of the step
+  float dq[4];   ///< rotation since the start of the step (x, y, z, w)
+  uint32_t dynamic;  ///< written by the solver
+  float pad[2];
+};
+static_assert(sizeof(SolverBody) == 64);
+
+// Field indices of a constraint (one manifold of up to 4 points).
+enum ConstraintField : uint32_t {
+  kNx, kNy, kNz, kT1x, kT1y, kT1z, kT2x, kT2y, kT2z,
+  kFriction, kRestitution, kMassA, kMassB,
+  kIa0, kIa1, kIa2, kIa3, kIa4, kIa5,  // inverse world inertia of a: xx xy xz yy yz zz
+  kIb0, kIb1, kIb2, kIb3, kIb4, kIb5,
+  kPointBase,
+};
+// Per point j, field kPointBase + j * kPointFields + offset.
+enum PointField : uint32_t {
+  kRax, kRay, kRaz, kRbx, kRby, kRbz,
+  kSeparation,     ///< adjusted: separation - dot(rB - rA, n), so s = dot(d, n) + this
+  kNormalMass, kTangentMass1, kTangentMass2,
+  kNormalImpulse, kTangentImpulse1, kTangentImpulse2,
+  kMaxNormalImpulse, kRelativeVelocity,
+  kPointFields,
+};
+inline constexpr uint32_t kConstraintFields = kPointBase + 4 * kPointFields;
+inline constexpr uint32_t point_field(uint32_t j, uint32_t f) { return kPointBase + j * kPointFields + f; }
+
+/// How the velocity iterations push penetrating contacts apart.
+enum class BiasMode : uint32_t {
+  none = 0,       ///< speculative only (relaxation, linear projection)
+  soft = 1,       ///< soft constraint (Box2D v3's soft step)
+  baumgarte = 2,  ///< rigid constraint with a Baumgarte velocity bias beyond the slop
+};
+
+struct Softness {
+  float bias_rate = 0.0f, mass_scale = 1.0f, impulse_scale = 0.0f;
+};
+
+struct ContactKernelArgs {
+  SolverBody* bodies = nullptr;
+  const uint32_t* body_a = nullptr;
+  const uint32_t* body_b = nullptr;
+  float* const* f = nullptr;  ///< kConstraintFields arrays
+  BiasMode mode = BiasMode::none;
+  float inv_h = 0.0f;          ///< 1 / sub-step
+  Softness soft, soft_static;  ///< between two movable bodies / against an immovable one
+  float baumgarte_rate = 0.0f; ///< baumgarte: fraction per second (beta / h)
+  float slop = 0.0f;
+  float max_push = 0.0f;       ///< cap on the bias velocity
+  float restitution_threshold = 0.0f;
+  uint32_t reverse = 0;  ///< solve a manifold's points 3..0 instead of 0..3 (alternated per pass)
+};
+
+}  // namespace detail
+
+using contact_pass_fn = void(const detail::ContactKernelArgs&, std::size_t begin, std::size_t end);
+GYRO_KERNEL(contact_warm_start, contact_pass_fn)
+GYRO_KERNEL(contact_solve, contact_pass_fn)
+GYRO_KERNEL(contact_restitution, contact_pass_fn)
+
+}  // namespace gyro
+
+#include "core/columns.hpp"
+#include "dynamics/constraint_graph.hpp"
+#include "dynamics/contacts.hpp"
+#include "gyro/world.hpp"
+
+#include <vector>
+
+namespace gyro::detail {
+
+/// Per-step inputs of the solver's prepare(): the bodies as the solver sees them.
+struct SolverBodies {
+  SolverBody* bodies = nullptr;      ///< count + 1 entries; the last is the immovable dummy
+  const float* inv_inertia = nullptr;  ///< 6 per body: world inverse inertia at the step start
+  const float* inv_mass = nullptr;     ///< per body
+  const uint8_t* writable = nullptr;   ///< per body: dynamic (count + 1 entries, dummy 0)
+  const uint32_t* index_of_slot = nullptr;  ///< per body slot: solver body, or the dummy
+  std::size_t count = 0;
+  uint32_t dummy() const { return uint32_t(count); }
+};
+
+class ContactSolver {
+ public:
+  /// Builds the constraints of the records that touch a solver body, colours them and fills
+  /// the SoA fields (anchors, masses, warm-start impulses). Returns the colour count.
+  uint32_t prepare(const BodyStore& store, const std::vector<ContactRecord>& records, const SolverBodies& sb,
+                   const WorldDef& def, float dt, float h);
+  void warm_start();
+  /// One velocity iteration with the given bias.
+  void solve(BiasMode mode);
+  void restitution();
+  /// The book's linear projection: pushes penetrating bodies apart along the normal.
+  void project_positions(BodyStore& store, const uint32_t* slot_of_body);
+  /// Accumulated impulses back to the records (for warm starting next step).
+  void store_impulses(std::vector<ContactRecord>& records) const;
+
+  std::size_t constraint_count() const { return count_; }
+  uint32_t colors() const { return plan_.colors(); }
+
+ private:
+  void run(contact_pass_fn* pass, const ContactKernelArgs& args) const;
+  ContactKernelArgs args_for(BiasMode mode) const;
+
+  ConstraintGraph graph_;
+  ColorPlan plan_;
+  std::vector<uint32_t> record_;                // constraint -> record
+  std::vector<uint32_t> cand_a_, cand_b_;       // constraint -> solver bodies (colouring input)
+  Column<uint32_t> body_a_, body_b_;            // padded slot -> solver bodies
+  Column<uint32_t> record_of_slot_;             // padded slot -> record (kNoRecord for padding)
+  std::vector<Column<float>> fields_ = std::vector<Column<float>>(kConstraintFields);
+  std::vector<float*> field_ptrs_ = std::vector<float*>(kConstraintFields);
+  std::size_t count_ = 0;
+  uint32_t passes_ = 0;  // solve passes this step: odd ones visit the points in reverse
+  SolverBodies sb_;
+  const WorldDef* def_ = nullptr;
+  float dt_ = 0.0f, h_ = 0.0f;
+};
+
+}  // namespace gyro::detail

@@ -1,0 +1,243 @@
+#include "dynamics/contacts.hpp"
+
+#include "core/parallel.hpp"
+#include "dynamics/narrowphase.hpp"
+#include "gyro/triangle_mesh.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace gyro::detail {
+namespace {
+
+constexpr uint32_t kMaxMeshManifolds = 16;  // triangles of one mesh touching one body
+constexpr std::size_t kPairChunk = 64;
+
+bool is_mesh(const BodyStore& s, uint32_t slot) { return s.shape[slot] == uint32_t(BodyShape::mesh); }
+
+Sphere sphere_of(const BodyStore& s, uint32_t i) { return {s.position(i), s.radius[i]}; }
+OBB box_of(const BodyStore& s, uint32_t i) { return {s.position(i), {s.hx[i], s.hy[i], s.hz[i]}, to_mat3(s.orientation(i))}; }
+Plane plane_of(const BodyStore& s, uint32_t i) {
+  const vec3 n = rotate(s.orientation(i), vec3{0.0f, 1.0f, 0.0f});
+  return {n, dot(n, s.position(i))};
+}
+
+void flip(Manifold* m) { m->normal = -m->normal; }
+
+// The manifold of a convex pair (no mesh), normal from a to b.
+void collide_convex(const BodyStore& s, uint32_t a, uint32_t b, float margin, Manifold* m) {
+  const auto sa = BodyShape(s.shape[a]), sb = BodyShape(s.shape[b]);
+  const bool swap = uint32_t(sa) > uint32_t(sb);  // canonical order: sphere < box < plane
+  const uint32_t p = swap ? b : a, q = swap ? a : b;
+  const auto sp = swap ? sb : sa, sq = swap ? sa : sb;
+  m->count = 0;
+  if (sp == BodyShape::sphere && sq == BodyShape::sphere) collide_spheres(sphere_of(s, p), sphere_of(s, q), margin, m);
+  else if (sp == BodyShape::sphere && sq == BodyShape::box) collide_sphere_box(sphere_of(s, p), box_of(s, q), margin, m);
+  else if (sp == BodyShape::box && sq == BodyShape::box) collide_boxes(box_of(s, p), box_of(s, q), margin, m);
+  else if (sp == BodyShape::sphere && sq == BodyShape::plane) collide_sphere_plane(sphere_of(s, p), plane_of(s, q), margin, m);
+  else if (sp == BodyShape::box && sq == BodyShape::plane) collide_box_plane(box_of(s, p), plane_of(s, q), margin, m);
+  if (swap) flip(m);
+}
+
+// Manifolds of body `body` (sphere or box) against the triangles of mesh body `mesh`, computed
+// in the mesh's frame; normals from body to mesh. Returns how many were written (<= cap).
+uint32_t collide_mesh(const BodyStore& s, uint32_t body, uint32_t mesh, float margin, ContactRecord* out, uint32_t cap) {
+  const quat qm = s.orientation(mesh), qm_inv = conjugate(qm);
+  const vec3 pm = s.position(mesh);
+  const vec3 p_local = rotate(qm_inv, s.position(body) - pm);
+  const quat q_local = qm_inv * s.orientation(body);
+  const bool sphere = s.shape[body] == uint32_t(BodyShape::sphere);
+  const OBB box{p_local, {s.hx[body], s.hy[body], s.hz[body]}, to_mat3(q_local)};
+  vec3 reach;
+  if (sphere) {
+    reach = vec3{s.radius[body], s.radius[body], s.radius[body]};
+  } else {
+    const mat3& r = box.orientation;  // rows are the box axes
+    for (int k = 0; k < 3; ++k)
+      reach[k] = (std::abs(r.m[0][k]) * box.half_extents.x + std::abs(r.m[1][k]) * box.half_extents.y) +
+                 std::abs(r.m[2][k]) * box.half_extents.z;
+  }
+  reach = reach + vec3{margin, margin, margin};
+  uint32_t tris[kMaxMeshManifolds];
+  const std::size_t found = s.mesh[mesh]->triangles_overlapping(AABB{p_local, reach}, tris, kMaxMeshManifolds);
+  const uint32_t n = uint32_t(std::min<std::size_t>(found, cap));
+  uint32_t written = 0;
+  for (uint32_t k = 0; k < n; ++k) {
+    const Triangle t = s.mesh[mesh]->triangle(tris[k]);
+    Manifold m;
+    if (sphere) collide_sphere_triangle(Sphere{p_local, s.radius[body]}, t, margin, &m);
+    else collide_box_triangle(box, t, margin, &m);
+    if (m.count == 0) continue;
+    m.normal = rotate(qm, m.normal);
+    for (uint32_t j = 0; j < m.count; ++j) m.points[j].position = rotate(qm, m.points[j].position) + pm;
+    out[written].manifold = m;
+    out[written].sub = tris[k];
+    ++written;
+  }
+  return written;
+}
+
+float motion_margin(const BodyStore& s, uint32_t a, uint32_t b, const ContactSettings& set) {
+  if (!set.continuous) return set.speculative_distance;
+  const vec3 dv = s.linear_velocity(b) - s.linear_velocity(a);
+  const float spin = length(s.angular_velocity(a)) * s.radius[a] + length(s.angular_velocity(b)) * s.radius[b];
+  return set.speculative_distance + (length(dv) + spin) * set.dt;
+}
+
+// Carries impulses from the old record to points with the same feature id.
+void warm_from(const ContactRecord& old, ContactRecord& r) {
+  for (uint32_t j = 0; j < r.manifold.count; ++j) {
+    for (uint32_t k = 0; k < old.manifold.count; ++k) {
+      if (old.manifold.points[k].feature_id != r.manifold.points[j].feature_id) continue;
+      r.normal_impulse[j] = old.normal_impulse[k];
+      r.tangent_impulse1[j] = old.tangent_impulse1[k];
+      r.tangent_impulse2[j] = old.tangent_impulse2[k];
+      break;
+    }
+  }
+  r.tangent1 = old.tangent1;
+}
+
+bool before(const ContactRecord& x, const ContactRecord& y) {
+  return x.key < y.key || (x.key == y.key && x.sub < y.sub);
+}
+
+}  // namespace
+
+bool ContactRecord::touching() const {
+  for (uint32_t j = 0; j < manifold.count; ++j)
+    if (manifold.points[j].separation <= 0.0f) return true;
+  return false;
+}
+
+void ContactSet::clear() {
+  records_.clear();
+  begin_.clear();
+  end_.clear();
+}
+
+void ContactSet::remove_body(uint32_t id_index) {
+  std::erase_if(records_, [&](const ContactRecord& r) { return r.index_a() == id_index || r.index_b() == id_index; });
+}
+
+void ContactSet::remap_slot(uint32_t from, uint32_t to) {
+  for (ContactRecord& r : records_) {
+    if (r.slot_a == from) r.slot_a = to;
+    if (r.slot_b == from) r.slot_b = to;
+  }
+}
+
+void ContactSet::update(const BodyStore& s, const std::vector<CandidatePair>& pairs, const uint8_t* active,
+                        const ContactSettings& set) {
+  // 1. Room per pair: one manifold for a convex pair, up to kMaxMeshManifolds against a mesh.
+  const std::size_t np = pairs.size();
+  pair_first_.resize(np + 1);
+  pair_count_.resize(np);
+  uint32_t total = 0;
+  for (std::size_t i = 0; i < np; ++i) {
+    pair_first_[i] = total;
+    total += (is_mesh(s, pairs[i].a) || is_mesh(s, pairs[i].b)) ? kMaxMeshManifolds : 1;
+  }
+  pair_first_[np] = total;
+  if (scratch_.size() < total) scratch_.resize(total);
+
+  // 2. Narrowphase, in parallel over fixed chunks of pairs: each pair writes its own range.
+  parallel_for(np, kPairChunk, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) {
+      const uint32_t a = pairs[i].a, b = pairs[i].b;
+      ContactRecord* out = scratch_.data() + pair_first_[i];
+      const float margin = motion_margin(s, a, b, set);
+      uint32_t n;
+      if (is_mesh(s, b)) {
+        n = collide_mesh(s, a, b, margin, out, kMaxMeshManifolds);
+      } else if (is_mesh(s, a)) {
+        n = collide_mesh(s, b, a, margin, out, kMaxMeshManifolds);
+        for (uint32_t k = 0; k < n; ++k) flip(&out[k].manifold);
+      } else {
+        out->sub = 0;
+        collide_convex(s, a, b, margin, &out->manifold);
+        n = out->manifold.count > 0 ? 1 : 0;
+      }
+      const BodyId ia = s.id[a], ib = s.id[b];
+      for (uint32_t k = 0; k < n; ++k) {
+        ContactRecord& r = out[k];
+        r.key = (uint64_t{ia.index} << 32) | ib.index;
+        r.gen_a = ia.generation, r.gen_b = ib.generation;
+        r.slot_a = a, r.slot_b = b;
+        r.friction = std::sqrt(s.friction[a] * s.friction[b]);
+        r.restitution = s.restitution[a] > s.restitution[b] ? s.restitution[a] : s.restitution[b];
+        for (uint32_t j = 0; j < kMaxManifoldPoints; ++j)
+          r.normal_impulse[j] = r.tangent_impulse1[j] = r.tangent_impulse2[j] = 0.0f;
+        r.tangent1 = vec3{};
+      }
+      pair_count_[i] = n;
+    }
+  });
+
+  // 3. Merge, in key order: fresh records (warm-started from the old ones) and old records
+  // whose bodies are both at rest, carried over.
+  old_.swap(records_);
+  records_.clear();
+  auto live_slot = [&](uint32_t index, uint32_t gen) { return s.ids.slot(Id{index, gen}); };
+  auto carried = [&](ContactRecord& r) {
+    const uint32_t sa = live_slot(r.index_a(), r.gen_a), sb = live_slot(r.index_b(), r.gen_b);
+    if (sa == IdPool::kNoSlot || sb == IdPool::kNoSlot) return false;  // a body was destroyed
+    if (active[sa] || active[sb]) return false;  // recomputed (or no longer touching)
+    r.slot_a = sa, r.slot_b = sb;
+    return true;
+  };
+  std::size_t o = 0;
+  for (std::size_t i = 0; i < np; ++i) {
+    for (uint32_t k = 0; k < pair_count_[i]; ++k) {
+      ContactRecord& r = scratch_[pair_first_[i] + k];
+      for (; o < old_.size() && before(old_[o], r); ++o)
+        if (carried(old_[o])) records_.push_back(old_[o]);
+      if (o < old_.size() && old_[o].key == r.key && old_[o].sub == r.sub && old_[o].gen_a == r.gen_a &&
+          old_[o].gen_b == r.gen_b) {
+        warm_from(old_[o], r);
+        ++o;
+      }
+      records_.push_back(r);
+    }
+  }
+  for (; o < old_.size(); ++o)
+    if (carried(old_[o])) records_.push_back(old_[o]);
+
+  // 4. Touch events per body pair (any sub-shape touching), both lists sorted by key.
+  auto touching = [](const std::vector<ContactRecord>& list, std::vector<TouchKey>& keys) {
+    keys.clear();
+    for (const ContactRecord& r : list)
+      if (r.touching() && (keys.empty() || keys.back().key != r.key))
+        keys.push_back({r.key, {{r.index_a(), r.gen_a}, {r.index_b(), r.gen_b}}});
+  };
+  touching(old_, touch_old_);
+  touching(records_, touch_new_);
+  begin_.clear();
+  end_.clear();
+  std::size_t x = 0, y = 0;
+  while (x < touch_old_.size() || y < touch_new_.size()) {
+    if (y == touch_new_.size() || (x < touch_old_.size() && touch_old_[x].key < touch_new_[y].key))
+      end_.push_back(touch_old_[x++].event);
+    else if (x == touch_old_.size() || touch_new_[y].key < touch_old_[x].key)
+      begin_.push_back(touch_new_[y++].event);
+    else
+      ++x, ++y;
+  }
+}
+
+void ContactSet::hash_into(StateHasher& h) const {
+  h.add_u64(records_.size());
+  for (const ContactRecord& r : records_) {
+    h.add_u64(r.key);
+    h.add_u64((uint64_t{r.sub} << 32) | r.manifold.count);
+    h.add_float(r.manifold.normal.x), h.add_float(r.manifold.normal.y), h.add_float(r.manifold.normal.z);
+    for (uint32_t j = 0; j < r.manifold.count; ++j) {
+      const ContactPoint& p = r.manifold.points[j];
+      h.add_u32(p.feature_id);
+      h.add_float(p.separation);
+      h.add_float(r.normal_impulse[j]), h.add_float(r.tangent_impulse1[j]), h.add_float(r.tangent_impulse2[j]);
+    }
+  }
+}
+
+}  // namespace gyro::detail

@@ -1,0 +1,499 @@
+// ParticleSystem (Cookbook chapter 14): SoA particle state, the three integrators and the
+// swept collision against static colliders. Conventions: include/gyro/particles.hpp.
+//
+// Determinism: a particle's step reads only its own columns, the settings and the
+// colliders, and writes only its own columns, so particles run in fixed chunks on any number
+// of threads with the same bits. Colliders are tried in index order and a tie in t keeps
+// the lower index. Arithmetic is + - * / and sqrt only (no FMA: -ffp-contract=off), through
+// gyro's raycasts, which are themselves deterministic.
+#include "gyro/particles.hpp"
+
+#include "core/columns.hpp"
+#include "core/error.hpp"
+#include "core/id_pool.hpp"
+#include "core/parallel.hpp"
+#include "core/state_hash.hpp"
+#include "core/validate.hpp"
+#include "dynamics/particles_internal.hpp"
+#include "gyro/raycast.hpp"
+
+#include <cmath>
+#include <vector>
+
+namespace gyro {
+namespace {
+
+using detail::Column;
+using detail::fail;
+using detail::is_finite;
+
+constexpr int kMaxBounces = 4;            // reflected sweeps per step; the next surface stops the particle
+constexpr float kSkin = 1e-3f;            // m left between a stopped particle and the surface ...
+constexpr float kSkinRelative = 0x1p-16f; // ... plus this fraction of its largest coordinate (>> raycast error)
+constexpr std::size_t kChunk = 512;       // particles per parallel chunk (fixed: results do not depend on threads)
+
+enum class ColliderKind : uint32_t { none = 0, sphere = 1, aabb = 2, obb = 3, plane = 4 };
+
+/// One static collider; only the member named by kind is used (the others stay default so
+/// the hash of a collider is a function of its kind and shape alone).
+struct Collider {
+  ColliderKind kind = ColliderKind::none;
+  Sphere sphere;
+  AABB aabb;
+  OBB obb;
+  Plane plane;
+};
+
+bool finite3(const vec3& v) { return is_finite(v.x) && is_finite(v.y) && is_finite(v.z); }
+float max_abs3(const vec3& v) {
+  const float x = std::abs(v.x), y = std::abs(v.y), z = std::abs(v.z);
+  const float m = x > y ? x : y;
+  return m > z ? m : z;
+}
+float skin_at(const vec3& p) { return kSkin + max_abs3(p) * kSkinRelative; }
+
+/// The first entering crossing of the segment s -> s + d with collider c: t in [0, 1] (units
+/// of |d|) and the outward normal; exits (the ray leaving a solid) do not count.
+bool first_hit(const Collider& c, const vec3& s, const vec3& d, float* t, vec3* point, vec3* normal) {
+  const Ray ray{s, d};
+  RaycastResult r;
+  switch (c.kind) {
+    case ColliderKind::sphere: r = raycast(c.sphere, ray, 0.0f, 1.0f); break;
+    case ColliderKind::aabb: r = raycast(c.aabb, ray, 0.0f, 1.0f); break;
+    case ColliderKind::obb: r = raycast(c.obb, ray, 0.0f, 1.0f); break;
+    case ColliderKind::plane: r = raycast(c.plane, ray, 0.0f, 1.0f); break;
+    default: return false;
+  }
+  if (!r.hit || !(dot(r.normal, d) < 0.0f)) return false;
+  *t = r.t, *point = r.point, *normal = r.normal;
+  return true;
+}
+
+/// If p is strictly inside collider c (behind it, for a plane), the point just outside the
+/// closest surface; otherwise p. Box faces: the shallowest, ties to the lower axis, then the
+/// positive side.
+vec3 push_out(const Collider& c, const vec3& p) {
+  switch (c.kind) {
+    case ColliderKind::sphere: {
+      const vec3 d = p - c.sphere.center;
+      const float d2 = dot(d, d), r = c.sphere.radius;
+      if (!(d2 < r * r)) return p;
+      const float len = std::sqrt(d2);
+      const vec3 n = len > 0.0f ? d / len : vec3{0.0f, 1.0f, 0.0f};
+      const vec3 surface = c.sphere.center + n * r;
+      return surface + n * skin_at(surface);
+    }
+    case ColliderKind::aabb:
+    case ColliderKind::obb: {
+      const bool oriented = c.kind == ColliderKind::obb;
+      const vec3 center = oriented ? c.obb.center : c.aabb.center;
+      const vec3 half = oriented ? c.obb.half_extents : c.aabb.half_extents;
+      const vec3 axes[3] = {oriented ? vec3{c.obb.orientation[0][0], c.obb.orientation[0][1], c.obb.orientation[0][2]} : vec3{1, 0, 0},
+                            oriented ? vec3{c.obb.orientation[1][0], c.obb.orientation[1][1], c.obb.orientation[1][2]} : vec3{0, 1, 0},
+                            oriented ? vec3{c.obb.orientation[2][0], c.obb.orientation[2][1], c.obb.orientation[2][2]} : vec3{0, 0, 1}};
+      const vec3 d = p - center;
+      int best = -1;
+      float best_depth = 0.0f, best_local = 0.0f;
+      for (int k = 0; k < 3; ++k) {
+        const float local = oriented ? dot(d, axes[k]) : d[k];
+        const float depth = half[k] - std::abs(local);
+        if (!(depth > 0.0f)) return p;  // outside or on the surface of this slab
+        if (best < 0 || depth < best_depth) best = k, best_depth = depth, best_local = local;
+      }
+      const float side = best_local >= 0.0f ? 1.0f : -1.0f;
+      const vec3 n = axes[best] * side;
+      const vec3 surface = p + n * best_depth;
+      return surface + n * skin_at(surface);
+    }
+    case ColliderKind::plane: {
+      const float depth = c.plane.distance - dot(c.plane.normal, p);
+      if (!(depth > 0.0f)) return p;
+      const vec3 surface = p + c.plane.normal * depth;
+      return surface + c.plane.normal * skin_at(surface);
+    }
+    default: return p;
+  }
+}
+
+/// Moves a particle from s towards e through the colliders: pushes s out of solids, then
+/// sweeps, stopping at the first surface, reflecting velocity v and the rest of the
+/// displacement (normal part * -bounce, tangential * (1 - friction)), up to kMaxBounces times.
+/// Returns whether anything changed the straight path; e and v receive the result.
+bool collide(const std::vector<Collider>& colliders, vec3 s, vec3& e, vec3& v, float bounce, float friction) {
+  bool touched = false;
+  for (const Collider& c : colliders) {
+    const vec3 out = push_out(c, s);
+    if (!(out == s)) e = e + (out - s), s = out, touched = true;
+  }
+  const float keep = 1.0f - friction;
+  for (int k = 0;; ++k) {
+    const vec3 d = e - s;
+    float best_t = 2.0f;
+    vec3 point, normal;
+    for (const Collider& c : colliders) {
+      float t;
+      vec3 p, n;
+      if (first_hit(c, s, d, &t, &p, &n) && t < best_t) best_t = t, point = p, normal = n;
+    }
+    if (best_t > 1.0f) return touched;
+    touched = true;
+    s = point + normal * skin_at(point);
+    const float vn = dot(v, normal);
+    if (vn < 0.0f) {
+      const vec3 v_n = normal * vn;
+      v = (v - v_n) * keep - v_n * bounce;
+    }
+    if (k == kMaxBounces) {
+      e = s;
+      return true;
+    }
+    const vec3 rest = e - point;
+    const vec3 r_n = normal * dot(rest, normal);
+    e = s + (rest - r_n) * keep - r_n * bounce;
+  }
+}
+
+Status check_unit_interval(float v, const char* name) {
+  if (!is_finite(v)) return fail(Status::non_finite, "%s is not finite", name);
+  if (v < 0.0f || v > 1.0f) return fail(Status::invalid_argument, "%s %g is outside [0, 1]", name, double(v));
+  return Status::ok;
+}
+
+}  // namespace
+
+struct ParticleSystem::Impl {
+  ParticleSettings settings;
+  detail::IdPool pool;
+  std::vector<ParticleId> ids;  // dense, ids[slot]
+  Column<float> px, py, pz, vx, vy, vz;
+  Column<float> qx, qy, qz;  // Verlet: the previous position
+  Column<float> fx, fy, fz;  // forces for the next step
+  Column<float> inv_mass, bounce, friction, gravity_scale;
+  Column<uint32_t> reseed;   // 1: derive Verlet's previous position from the velocity next step
+  float last_dt = 0.0f;      // the dt the previous positions belong to
+  std::vector<Collider> colliders;
+  std::size_t live_colliders = 0;
+
+
+  uint32_t slot(ParticleId id) const { return pool.slot(detail::Id{id.index, id.generation}); }
+  vec3 position(uint32_t i) const { return {px[i], py[i], pz[i]}; }
+  vec3 velocity(uint32_t i) const { return {vx[i], vy[i], vz[i]}; }
+
+  Status find(ParticleId id, uint32_t* out) const {
+    *out = slot(id);
+    if (*out == detail::IdPool::kNoSlot)
+      return fail(Status::stale_id, "particle id {%u, %u} is stale or null", id.index, id.generation);
+    return Status::ok;
+  }
+
+  Status add_collider(const Collider& c, uint32_t* index) {
+    GYRO_TRY(detail::require_not_null(index, "index"));
+    uint32_t at = 0;
+    while (at < colliders.size() && colliders[at].kind != ColliderKind::none) ++at;
+    if (at == colliders.size()) colliders.push_back(c);
+    else colliders[at] = c;
+    ++live_colliders;
+    *index = at;
+    return Status::ok;
+  }
+
+  void step_one(uint32_t i, float dt, float damp, bool reseed_all);
+};
+
+namespace {
+/// Every float column, in the order create() fills and hash_into() hashes them.
+constexpr Column<float> ParticleSystem::Impl::*kFloatColumns[] = {
+    &ParticleSystem::Impl::px, &ParticleSystem::Impl::py, &ParticleSystem::Impl::pz,
+    &ParticleSystem::Impl::vx, &ParticleSystem::Impl::vy, &ParticleSystem::Impl::vz,
+    &ParticleSystem::Impl::qx, &ParticleSystem::Impl::qy, &ParticleSystem::Impl::qz,
+    &ParticleSystem::Impl::fx, &ParticleSystem::Impl::fy, &ParticleSystem::Impl::fz,
+    &ParticleSystem::Impl::inv_mass, &ParticleSystem::Impl::bounce, &ParticleSystem::Impl::friction,
+    &ParticleSystem::Impl::gravity_scale};
+}  // namespace
+
+// ---------------------------------------------------------------- lifetime and settings
+
+ParticleSystem::ParticleSystem() : impl_(std::make_unique<Impl>()) {}
+ParticleSystem::~ParticleSystem() = default;
+ParticleSystem::ParticleSystem(const ParticleSystem& other) : impl_(std::make_unique<Impl>(*other.impl_)) {}
+ParticleSystem& ParticleSystem::operator=(const ParticleSystem& other) {
+  if (this != &other) impl_ = std::make_unique<Impl>(*other.impl_);
+  return *this;
+}
+
+Status ParticleSystem::set_settings(const ParticleSettings& s) {
+  if (!finite3(s.gravity)) return fail(Status::non_finite, "particle gravity is not finite");
+  if (!is_finite(s.damping)) return fail(Status::non_finite, "particle damping is not finite");
+  if (s.damping < 0.0f) return fail(Status::invalid_argument, "particle damping %g is negative", double(s.damping));
+  if (static_cast<uint32_t>(s.integrator) > static_cast<uint32_t>(ParticleIntegrator::verlet))
+    return fail(Status::invalid_argument, "unknown particle integrator %u", static_cast<uint32_t>(s.integrator));
+  if (s.integrator != impl_->settings.integrator) {
+    // Verlet's previous positions are only kept up to date while it runs.
+    for (std::size_t i = 0; i < impl_->reseed.size(); ++i) impl_->reseed[i] = 1;
+  }
+  impl_->settings = s;
+  return Status::ok;
+}
+
+const ParticleSettings& ParticleSystem::settings() const { return impl_->settings; }
+
+// ---------------------------------------------------------------- particles
+
+Status ParticleSystem::create(const ParticleDef& def, ParticleId* out) {
+  GYRO_TRY(detail::require_not_null(out, "out"));
+  if (!finite3(def.position)) return fail(Status::non_finite, "particle position is not finite");
+  if (!finite3(def.velocity)) return fail(Status::non_finite, "particle velocity is not finite");
+  if (!def.pinned) {
+    if (!is_finite(def.mass)) return fail(Status::non_finite, "particle mass is not finite");
+    if (!(def.mass > 0.0f)) return fail(Status::invalid_argument, "particle mass %g is not > 0 (pin it instead)", double(def.mass));
+  }
+  GYRO_TRY(check_unit_interval(def.bounce, "particle bounce"));
+  GYRO_TRY(check_unit_interval(def.friction, "particle friction"));
+  if (!is_finite(def.gravity_scale)) return fail(Status::non_finite, "particle gravity_scale is not finite");
+
+  Impl& m = *impl_;
+  const std::size_t n = m.ids.size();
+  bool room = m.reseed.reserve(n + 1);
+  for (auto col : kFloatColumns) room = room && (m.*col).reserve(n + 1);
+  if (!room) return fail(Status::out_of_memory, "no memory for particle %zu", n);
+  m.ids.reserve(n + 1);
+
+  const detail::Id id = m.pool.create();
+  const vec3 p = def.position, v = def.velocity;
+  const float values[] = {p.x, p.y, p.z, v.x, v.y, v.z, p.x, p.y, p.z, 0.0f, 0.0f, 0.0f,
+                          def.pinned ? 0.0f : 1.0f / def.mass, def.bounce, def.friction, def.gravity_scale};
+  for (std::size_t k = 0; k < std::size(kFloatColumns); ++k) (m.*kFloatColumns[k]).push_back(values[k]);
+  m.reseed.push_back(1);
+  m.ids.push_back({id.index, id.generation});
+  *out = {id.index, id.generation};
+  return Status::ok;
+}
+
+Status ParticleSystem::destroy(ParticleId id) {
+  Impl& m = *impl_;
+  uint32_t slot;
+  GYRO_TRY(m.find(id, &slot));
+  const detail::IdPool::Removal r = m.pool.destroy(detail::Id{id.index, id.generation});
+  for (auto col : kFloatColumns) (m.*col).swap_remove(r.slot);
+  m.reseed.swap_remove(r.slot);
+  m.ids[r.slot] = m.ids.back();
+  m.ids.pop_back();
+  return Status::ok;
+}
+
+bool ParticleSystem::is_valid(ParticleId id) const { return impl_->slot(id) != detail::IdPool::kNoSlot; }
+std::size_t ParticleSystem::count() const { return impl_->ids.size(); }
+
+Status ParticleSystem::get_position(ParticleId id, vec3* position) const {
+  GYRO_TRY(detail::require_not_null(position, "position"));
+  uint32_t i;
+  GYRO_TRY(impl_->find(id, &i));
+  *position = impl_->position(i);
+  return Status::ok;
+}
+
+Status ParticleSystem::get_velocity(ParticleId id, vec3* velocity) const {
+  GYRO_TRY(detail::require_not_null(velocity, "velocity"));
+  uint32_t i;
+  GYRO_TRY(impl_->find(id, &i));
+  *velocity = impl_->velocity(i);
+  return Status::ok;
+}
+
+Status ParticleSystem::set_position(ParticleId id, const vec3& position) {
+  uint32_t i;
+  GYRO_TRY(impl_->find(id, &i));
+  if (!finite3(position)) return fail(Status::non_finite, "particle position is not finite");
+  Impl& m = *impl_;
+  m.px[i] = position.x, m.py[i] = position.y, m.pz[i] = position.z;
+  m.reseed[i] = 1;
+  return Status::ok;
+}
+
+Status ParticleSystem::set_velocity(ParticleId id, const vec3& velocity) {
+  uint32_t i;
+  GYRO_TRY(impl_->find(id, &i));
+  if (!finite3(velocity)) return fail(Status::non_finite, "particle velocity is not finite");
+  Impl& m = *impl_;
+  m.vx[i] = velocity.x, m.vy[i] = velocity.y, m.vz[i] = velocity.z;
+  m.reseed[i] = 1;
+  return Status::ok;
+}
+
+Status ParticleSystem::add_force(ParticleId id, const vec3& force) {
+  uint32_t i;
+  GYRO_TRY(impl_->find(id, &i));
+  if (!finite3(force)) return fail(Status::non_finite, "particle force is not finite");
+  Impl& m = *impl_;
+  m.fx[i] = m.fx[i] + force.x, m.fy[i] = m.fy[i] + force.y, m.fz[i] = m.fz[i] + force.z;
+  return Status::ok;
+}
+
+// ---------------------------------------------------------------- colliders
+
+Status ParticleSystem::add_collider(const Sphere& sphere, uint32_t* index) {
+  if (!finite3(sphere.center) || !is_finite(sphere.radius)) return fail(Status::non_finite, "sphere collider is not finite");
+  if (sphere.radius < 0.0f) return fail(Status::invalid_argument, "sphere collider radius %g is negative", double(sphere.radius));
+  Collider c;
+  c.kind = ColliderKind::sphere, c.sphere = sphere;
+  return impl_->add_collider(c, index);
+}
+
+Status ParticleSystem::add_collider(const AABB& box, uint32_t* index) {
+  if (!finite3(box.center) || !finite3(box.half_extents)) return fail(Status::non_finite, "AABB collider is not finite");
+  if (box.half_extents.x < 0.0f || box.half_extents.y < 0.0f || box.half_extents.z < 0.0f)
+    return fail(Status::invalid_argument, "AABB collider has a negative half extent");
+  Collider c;
+  c.kind = ColliderKind::aabb, c.aabb = box;
+  return impl_->add_collider(c, index);
+}
+
+Status ParticleSystem::add_collider(const OBB& box, uint32_t* index) {
+  bool finite = finite3(box.center) && finite3(box.half_extents);
+  for (int r = 0; r < 3; ++r)
+    for (int k = 0; k < 3; ++k) finite = finite && is_finite(box.orientation[r][k]);
+  if (!finite) return fail(Status::non_finite, "OBB collider is not finite");
+  if (box.half_extents.x < 0.0f || box.half_extents.y < 0.0f || box.half_extents.z < 0.0f)
+    return fail(Status::invalid_argument, "OBB collider has a negative half extent");
+  for (int r = 0; r < 3; ++r) {
+    for (int q = r; q < 3; ++q) {
+      const vec3 a{box.orientation[r][0], box.orientation[r][1], box.orientation[r][2]};
+      const vec3 b{box.orientation[q][0], box.orientation[q][1], box.orientation[q][2]};
+      const float want = r == q ? 1.0f : 0.0f;
+      if (!(std::abs(dot(a, b) - want) <= 1e-3f))
+        return fail(Status::invalid_argument, "OBB collider orientation is not orthonormal (rows %d, %d)", r, q);
+    }
+  }
+  Collider c;
+  c.kind = ColliderKind::obb, c.obb = box;
+  return impl_->add_collider(c, index);
+}
+
+Status ParticleSystem::add_collider(const Plane& plane, uint32_t* index) {
+  if (!finite3(plane.normal) || !is_finite(plane.distance)) return fail(Status::non_finite, "plane collider is not finite");
+  const float len = length(plane.normal);
+  if (!(len > 0.0f) || !is_finite(len)) return fail(Status::invalid_argument, "plane collider normal is zero or too large");
+  Collider c;
+  c.kind = ColliderKind::plane;
+  c.plane = {plane.normal / len, plane.distance / len};
+  return impl_->add_collider(c, index);
+}
+
+Status ParticleSystem::remove_collider(uint32_t index) {
+  Impl& m = *impl_;
+  if (index >= m.colliders.size() || m.colliders[index].kind == ColliderKind::none)
+    return fail(Status::invalid_argument, "no particle collider %u", index);
+  m.colliders[index] = Collider{};
+  --m.live_colliders;
+  while (!m.colliders.empty() && m.colliders.back().kind == ColliderKind::none) m.colliders.pop_back();
+  return Status::ok;
+}
+
+void ParticleSystem::clear_colliders() {
+  impl_->colliders.clear();
+  impl_->live_colliders = 0;
+}
+
+std::size_t ParticleSystem::collider_count() const { return impl_->live_colliders; }
+
+// ---------------------------------------------------------------- step
+
+void ParticleSystem::Impl::step_one(uint32_t i, float dt, float damp, bool reseed_all) {
+  const vec3 x = position(i), v = velocity(i);
+  const float im = inv_mass[i];
+  vec3 xn, vn;
+  if (im == 0.0f) {  // pinned: kinematic
+    xn = x + v * dt;
+    qx[i] = x.x, qy[i] = x.y, qz[i] = x.z;
+    px[i] = xn.x, py[i] = xn.y, pz[i] = xn.z;
+    fx[i] = fy[i] = fz[i] = 0.0f;
+    reseed[i] = 0;
+    return;
+  }
+  const vec3 a = settings.gravity * gravity_scale[i] + vec3{fx[i], fy[i], fz[i]} * im;
+  const ParticleIntegrator integrator = settings.integrator;
+  switch (integrator) {
+    case ParticleIntegrator::explicit_euler:
+      xn = x + v * dt;
+      vn = (v + a * dt) * damp;
+      break;
+    case ParticleIntegrator::semi_implicit_euler:
+      vn = (v + a * dt) * damp;
+      xn = x + vn * dt;
+      break;
+    case ParticleIntegrator::verlet: {
+      // The previous position that makes the step x + v dt + a dt^2 / 2 (exact for constant a).
+      const vec3 prev = (reseed_all || reseed[i]) ? x - v * dt + a * (0.5f * dt * dt) : vec3{qx[i], qy[i], qz[i]};
+      // The small terms first: one rounding at the position's magnitude per step.
+      xn = x + ((x - prev) * damp + a * (dt * dt));
+      vn = (xn - x) / dt + a * (0.5f * dt);
+      break;
+    }
+  }
+  const bool hit = !colliders.empty() && collide(colliders, x, xn, vn, bounce[i], friction[i]);
+  if (integrator == ParticleIntegrator::verlet) {
+    // After a bounce, the previous position whose implied velocity is the reflected one.
+    const vec3 q = hit ? xn - vn * dt + a * (0.5f * dt * dt) : x;
+    qx[i] = q.x, qy[i] = q.y, qz[i] = q.z;
+  } else {
+    qx[i] = x.x, qy[i] = x.y, qz[i] = x.z;
+  }
+  px[i] = xn.x, py[i] = xn.y, pz[i] = xn.z;
+  vx[i] = vn.x, vy[i] = vn.y, vz[i] = vn.z;
+  fx[i] = fy[i] = fz[i] = 0.0f;
+  reseed[i] = 0;
+}
+
+Status ParticleSystem::step(float dt) {
+  if (!is_finite(dt)) return fail(Status::non_finite, "particle step dt is not finite");
+  if (!(dt > 0.0f)) return fail(Status::invalid_argument, "particle step dt %g is not > 0", double(dt));
+  Impl& m = *impl_;
+  const float damp = 1.0f / (1.0f + dt * m.settings.damping);
+  const bool reseed_all = dt != m.last_dt;  // Verlet's previous positions were for another dt
+  detail::parallel_for(m.ids.size(), kChunk, [&](std::size_t b, std::size_t e) {
+    for (std::size_t i = b; i < e; ++i) m.step_one(static_cast<uint32_t>(i), dt, damp, reseed_all);
+  });
+  m.last_dt = dt;
+  return Status::ok;
+}
+
+// ---------------------------------------------------------------- views and hashing
+
+ParticleView ParticleSystem::view() const {
+  const Impl& m = *impl_;
+  return {m.ids.size(), m.ids.data(), m.px.data(), m.py.data(), m.pz.data(), m.vx.data(), m.vy.data(), m.vz.data()};
+}
+
+uint64_t ParticleSystem::hash() const {
+  detail::StateHasher h;
+  detail::ParticleAccess::hash_into(*this, h);
+  return h.digest();
+}
+
+void detail::ParticleAccess::hash_into(const ParticleSystem& ps, StateHasher& h) {
+  const ParticleSystem::Impl& m = *ps.impl_;
+  const ParticleSettings& s = m.settings;
+  h.add_float(s.gravity.x), h.add_float(s.gravity.y), h.add_float(s.gravity.z);
+  h.add_u32(static_cast<uint32_t>(s.integrator));
+  h.add_float(s.damping);
+  h.add_float(m.last_dt);
+  m.pool.hash_into(h);
+  const std::size_t n = m.ids.size();
+  for (auto col : kFloatColumns) h.add_floats({(m.*col).data(), n});
+  h.add_u32s({m.reseed.data(), n});
+  for (const ParticleId& id : m.ids) h.add_u64((uint64_t{id.index} << 32) | id.generation);
+  h.add_u64(m.colliders.size());
+  for (const Collider& c : m.colliders) {
+    h.add_u32(static_cast<uint32_t>(c.kind));
+    const float f[] = {c.sphere.center.x, c.sphere.center.y, c.sphere.center.z, c.sphere.radius,
+                       c.aabb.center.x, c.aabb.center.y, c.aabb.center.z,
+                       c.aabb.half_extents.x, c.aabb.half_extents.y, c.aabb.half_extents.z,
+                       c.obb.center.x, c.obb.center.y, c.obb.center.z,
+                       c.obb.half_extents.x, c.obb.half_extents.y, c.obb.half_extents.z,
+                       c.plane.normal.x, c.plane.normal.y, c.plane.normal.z, c.plane.distance};
+    h.add_floats(f);
+    h.add_floats({c.obb.orientation.data(), 9});
+  }
+}
+
+}  // namespace gyro

@@ -1,0 +1,411 @@
+// A world step, stage by stage in the Cookbook's order. Every stage is written so that its
+// result depends only on the state and the inputs: loops over bodies run in slot order or
+// in fixed chunks that each write their own outputs; contacts are ordered by ids.
+#include "core/parallel.hpp"
+#include "core/validate.hpp"
+#include "dynamics/mass.hpp"
+#include "gyro/particles.hpp"
+#include "gyro/triangle_mesh.hpp"
+#include "world/world_impl.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+namespace gyro {
+namespace {
+
+using detail::BodyStore;
+using Clock = std::chrono::steady_clock;
+
+double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
+
+constexpr std::size_t kBodyChunk = 512;
+
+// World-space AABB half extents of a body's shape.
+vec3 shape_reach(const BodyStore& s, uint32_t i) {
+  if (s.shape[i] == uint32_t(BodyShape::sphere)) return {s.radius[i], s.radius[i], s.radius[i]};
+  const vec3 h = s.shape[i] == uint32_t(BodyShape::mesh) ? s.mesh[i]->bounds().half_extents
+                                                           : vec3{s.hx[i], s.hy[i], s.hz[i]};
+  const mat3 r = to_mat3(s.orientation(i));  // rows: the body axes in the world
+  vec3 out;
+  for (int k = 0; k < 3; ++k)
+    out[k] = (std::abs(r.m[0][k]) * h.x + std::abs(r.m[1][k]) * h.y) + std::abs(r.m[2][k]) * h.z;
+  return out;
+}
+
+vec3 shape_center(const BodyStore& s, uint32_t i) {
+  if (s.shape[i] != uint32_t(BodyShape::mesh)) return s.position(i);
+  return rotate(s.orientation(i), s.mesh[i]->bounds().center) + s.position(i);
+}
+
+}  // namespace
+
+void World::Impl::wake(uint32_t i) {
+  if (!bodies.is_dynamic(i)) return;
+  bodies.flags[i] |= detail::kBodyAwake;
+  bodies.sleep_time[i] = 0.0f;
+}
+
+void World::Impl::find_pairs(float dt) {
+  BodyStore& s = bodies;
+  const uint32_t n = s.size();
+  candidates.clear();
+  bool any_active = false;
+  for (uint32_t i = 0; i < n; ++i) any_active = any_active || active[i];
+  if (!any_active) return;
+
+  // Bounds: the shape's box grown by the speculative margin and, for moving bodies, by the
+  // motion of the step, so a fast body finds what it could reach.
+  broad_slot.clear(), planes.clear();
+  bmin_x.clear(), bmin_y.clear(), bmin_z.clear(), bmax_x.clear(), bmax_y.clear(), bmax_z.clear();
+  broad_key.clear(), broad_cat.clear(), broad_mask.clear(), broad_flags.clear();
+  const float spec = 4.0f * def.linear_slop;
+  for (uint32_t i = 0; i < n; ++i) {
+    if (s.shape[i] == uint32_t(BodyShape::plane)) {
+      planes.push_back(i);
+      continue;
+    }
+    vec3 reach = shape_reach(s, i);
+    const vec3 c = shape_center(s, i);
+    float grow = spec;
+    if (active[i] && def.enable_continuous)
+      grow = grow + (length(s.linear_velocity(i)) + length(s.angular_velocity(i)) * s.radius[i]) * dt;
+    reach = reach + vec3{grow, grow, grow};
+    broad_slot.push_back(i);
+    bmin_x.push_back(c.x - reach.x), bmin_y.push_back(c.y - reach.y), bmin_z.push_back(c.z - reach.z);
+    bmax_x.push_back(c.x + reach.x), bmax_y.push_back(c.y + reach.y), bmax_z.push_back(c.z + reach.z);
+    broad_key.push_back(s.id[i].index);
+    broad_cat.push_back(s.category[i]), broad_mask.push_back(s.mask[i]);
+    broad_flags.push_back(uint8_t((s.is_dynamic(i) ? detail::kBroadDynamic : 0) | (active[i] ? detail::kBroadActive : 0)));
+  }
+  detail::BroadphaseInput in;
+  in.count = broad_slot.size();
+  in.min_x = bmin_x.data(), in.min_y = bmin_y.data(), in.min_z = bmin_z.data();
+  in.max_x = bmax_x.data(), in.max_y = bmax_y.data(), in.max_z = bmax_z.data();
+  in.category = broad_cat.data(), in.mask = broad_mask.data(), in.flags = broad_flags.data(), in.key = broad_key.data();
+  broadphase.find_pairs(in, broad_pairs);
+  for (const detail::BroadPair& p : broad_pairs) candidates.push_back({broad_slot[p.a], broad_slot[p.b]});
+
+  // Planes are infinite: tested against every active dynamic body directly.
+  if (!planes.empty()) {
+    const std::size_t before = candidates.size();
+    for (uint32_t k = 0; k < broad_slot.size(); ++k) {
+      const uint32_t i = broad_slot[k];
+      if (!active[i] || !s.is_dynamic(i)) continue;
+      for (uint32_t p : planes) {
+        if (!(s.category[i] & s.mask[p]) || !(s.category[p] & s.mask[i])) continue;
+        const vec3 nrm = rotate(s.orientation(p), vec3{0.0f, 1.0f, 0.0f});
+        const vec3 c{(bmin_x[k] + bmax_x[k]) * 0.5f, (bmin_y[k] + bmax_y[k]) * 0.5f, (bmin_z[k] + bmax_z[k]) * 0.5f};
+        const vec3 e{(bmax_x[k] - bmin_x[k]) * 0.5f, (bmax_y[k] - bmin_y[k]) * 0.5f, (bmax_z[k] - bmin_z[k]) * 0.5f};
+        const float dist = dot(nrm, c - s.position(p));
+        const float r = (std::abs(nrm.x) * e.x + std::abs(nrm.y) * e.y) + std::abs(nrm.z) * e.z;
+        if (std::abs(dist) > r) continue;
+        const bool plane_first = s.id[p].index < s.id[i].index;
+        candidates.push_back(plane_first ? detail::CandidatePair{p, i} : detail::CandidatePair{i, p});
+      }
+    }
+    if (candidates.size() != before) {
+      // Keys are unique, so this order is total and the sort deterministic.
+      std::sort(candidates.begin(), candidates.end(), [&](const detail::CandidatePair& x, const detail::CandidatePair& y) {
+        const uint64_t kx = (uint64_t{s.id[x.a].index} << 32) | s.id[x.b].index;
+        const uint64_t ky = (uint64_t{s.id[y.a].index} << 32) | s.id[y.b].index;
+        return kx < ky;
+      });
+    }
+  }
+}
+
+void World::Impl::wake_islands() {
+  BodyStore& s = bodies;
+  islands.build(s, contacts.records());
+  const uint32_t ni = islands.count();
+  island_awake.assign(ni, 0);
+  // A kinematic body touching an island keeps it awake (it moves, whatever the island does).
+  for (const detail::ContactRecord& r : contacts.records()) {
+    const bool ka = s.type[r.slot_a] == uint32_t(BodyType::kinematic), kb = s.type[r.slot_b] == uint32_t(BodyType::kinematic);
+    if (ka == kb || !r.touching()) continue;
+    const uint32_t kin = ka ? r.slot_a : r.slot_b;
+    if (length_squared(s.linear_velocity(kin)) == 0.0f && length_squared(s.angular_velocity(kin)) == 0.0f) continue;
+    const uint32_t k = islands.island_of(ka ? r.slot_b : r.slot_a);
+    if (k != detail::Islands::kNone) island_awake[k] = 1;
+  }
+  for (uint32_t i = 0; i < s.size(); ++i) {
+    const uint32_t k = islands.island_of(i);
+    if (k != detail::Islands::kNone && s.is_awake(i)) island_awake[k] = 1;
+  }
+  for (uint32_t i = 0; i < s.size(); ++i) {
+    const uint32_t k = islands.island_of(i);
+    if (k != detail::Islands::kNone && island_awake[k] && !s.is_awake(i)) wake(i);
+  }
+}
+
+void World::Impl::build_solver_bodies() {
+  BodyStore& s = bodies;
+  const uint32_t n = s.size();
+  index_of_slot.resize(n);
+  slot_of_body.clear();
+  for (uint32_t i = 0; i < n; ++i) {
+    const bool moves = (s.is_dynamic(i) && s.is_awake(i)) || s.type[i] == uint32_t(BodyType::kinematic);
+    index_of_slot[i] = moves ? uint32_t(slot_of_body.size()) : 0xFFFFFFFFu;
+    if (moves) slot_of_body.push_back(i);
+  }
+  const uint32_t m = uint32_t(slot_of_body.size());
+  for (uint32_t i = 0; i < n; ++i)
+    if (index_of_slot[i] == 0xFFFFFFFFu) index_of_slot[i] = m;  // the dummy
+  solver_bodies.resize(m + 1);
+  inv_inertia.resize(6 * std::size_t(m + 1));
+  inv_mass.resize(m + 1);
+  writable.resize(m + 1);
+  q0.resize(4 * std::size_t(m));
+  lin_acc.resize(3 * std::size_t(m));
+  ang_acc.resize(3 * std::size_t(m));
+  const vec3 g = def.gravity;
+  detail::parallel_for(m + 1, kBodyChunk, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t b = begin; b < end; ++b) {
+      detail::SolverBody& sb = solver_bodies[b];
+      sb = detail::SolverBody{};
+      sb.dq[3] = 1.0f;
+      float* ii = inv_inertia.data() + 6 * b;
+      if (b == m) {
+        for (int k = 0; k < 6; ++k) ii[k] = 0.0f;
+        inv_mass[b] = 0.0f, writable[b] = 0;
+        continue;
+      }
+      const uint32_t i = slot_of_body[b];
+      const bool dyn = s.is_dynamic(i);
+      sb.v[0] = s.vx[i], sb.v[1] = s.vy[i], sb.v[2] = s.vz[i];
+      sb.w[0] = s.wx[i], sb.w[1] = s.wy[i], sb.w[2] = s.wz[i];
+      sb.dynamic = dyn ? 1u : 0u;
+      writable[b] = dyn ? 1 : 0;
+      inv_mass[b] = s.inv_mass[i];
+      q0[4 * b] = s.qx[i], q0[4 * b + 1] = s.qy[i], q0[4 * b + 2] = s.qz[i], q0[4 * b + 3] = s.qw[i];
+      // World inverse inertia R diag(d) R^T; the rows of to_mat3(q) are the body axes.
+      const mat3 r = to_mat3(s.orientation(i));
+      const float d[3] = {s.inv_ix[i], s.inv_iy[i], s.inv_iz[i]};
+      auto e = [&](int x, int y) {
+        return (r.m[0][x] * d[0] * r.m[0][y] + r.m[1][x] * d[1] * r.m[1][y]) + r.m[2][x] * d[2] * r.m[2][y];
+      };
+      ii[0] = e(0, 0), ii[1] = e(0, 1), ii[2] = e(0, 2), ii[3] = e(1, 1), ii[4] = e(1, 2), ii[5] = e(2, 2);
+      const float gs = s.gravity_scale[i], im = s.inv_mass[i];
+      vec3 la{}, aa{};
+      if (dyn) {
+        la = g * gs + vec3{s.fx[i], s.fy[i], s.fz[i]} * im;
+        const vec3 t{s.tx[i], s.ty[i], s.tz[i]};
+        aa = {(ii[0] * t.x + ii[1] * t.y) + ii[2] * t.z, (ii[1] * t.x + ii[3] * t.y) + ii[4] * t.z,
+              (ii[2] * t.x + ii[4] * t.y) + ii[5] * t.z};
+      }
+      lin_acc[3 * b] = la.x, lin_acc[3 * b + 1] = la.y, lin_acc[3 * b + 2] = la.z;
+      ang_acc[3 * b] = aa.x, ang_acc[3 * b + 1] = aa.y, ang_acc[3 * b + 2] = aa.z;
+    }
+  });
+}
+
+// v += h a, damped; w += h alpha, then the gyroscopic torque -w x (I w) integrated implicitly
+// in the body frame (one Newton step, Catto 2015): stable for long thin bodies where the
+// explicit form gains energy.
+void World::Impl::integrate_velocities(float h) {
+  BodyStore& s = bodies;
+  const std::size_t m = slot_of_body.size();
+  detail::parallel_for(m, kBodyChunk, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t b = begin; b < end; ++b) {
+      detail::SolverBody& sb = solver_bodies[b];
+      if (!sb.dynamic) continue;
+      const uint32_t i = slot_of_body[b];
+      const float ld = 1.0f / (1.0f + h * s.linear_damping[i]);
+      const float ad = 1.0f / (1.0f + h * s.angular_damping[i]);
+      vec3 v{sb.v[0], sb.v[1], sb.v[2]}, w{sb.w[0], sb.w[1], sb.w[2]};
+      v = (v + vec3{lin_acc[3 * b], lin_acc[3 * b + 1], lin_acc[3 * b + 2]} * h) * ld;
+      w = w + vec3{ang_acc[3 * b], ang_acc[3 * b + 1], ang_acc[3 * b + 2]} * h;
+      const float dx = s.inv_ix[i], dy = s.inv_iy[i], dz = s.inv_iz[i];
+      if (!(dx == dy && dy == dz) && dx > 0.0f) {
+        const quat q = s.orientation(i);
+        const vec3 wb = rotate(conjugate(q), w);
+        const vec3 ib{1.0f / dx, 1.0f / dy, 1.0f / dz};
+        const vec3 iw = ib * wb;
+        const vec3 f = cross(wb, iw) * h;
+        // J = I + h (skew(wb) I - skew(I wb))
+        float j[3][3];
+        const float skw[3][3] = {{0.0f, -wb.z, wb.y}, {wb.z, 0.0f, -wb.x}, {-wb.y, wb.x, 0.0f}};
+        const float ski[3][3] = {{0.0f, -iw.z, iw.y}, {iw.z, 0.0f, -iw.x}, {-iw.y, iw.x, 0.0f}};
+        for (int r = 0; r < 3; ++r)
+          for (int c = 0; c < 3; ++c) j[r][c] = (r == c ? ib[r] : 0.0f) + h * (skw[r][c] * ib[c] - ski[r][c]);
+        const float c00 = j[1][1] * j[2][2] - j[1][2] * j[2][1];
+        const float c01 = j[1][2] * j[2][0] - j[1][0] * j[2][2];
+        const float c02 = j[1][0] * j[2][1] - j[1][1] * j[2][0];
+        const float det = (j[0][0] * c00 + j[0][1] * c01) + j[0][2] * c02;
+        if (std::abs(det) > 0.0f && detail::is_finite(det)) {
+          const float inv = 1.0f / det;
+          // x = J^-1 f by the adjugate.
+          const float a[3][3] = {{c00, j[0][2] * j[2][1] - j[0][1] * j[2][2], j[0][1] * j[1][2] - j[0][2] * j[1][1]},
+                                 {c01, j[0][0] * j[2][2] - j[0][2] * j[2][0], j[0][2] * j[1][0] - j[0][0] * j[1][2]},
+                                 {c02, j[0][1] * j[2][0] - j[0][0] * j[2][1], j[0][0] * j[1][1] - j[0][1] * j[1][0]}};
+          const vec3 x{((a[0][0] * f.x + a[0][1] * f.y) + a[0][2] * f.z) * inv,
+                       ((a[1][0] * f.x + a[1][1] * f.y) + a[1][2] * f.z) * inv,
+                       ((a[2][0] * f.x + a[2][1] * f.y) + a[2][2] * f.z) * inv};
+          w = rotate(q, wb - x);
+        }
+      }
+      w = w * ad;
+      sb.v[0] = v.x, sb.v[1] = v.y, sb.v[2] = v.z;
+      sb.w[0] = w.x, sb.w[1] = w.y, sb.w[2] = w.z;
+    }
+  });
+}
+
+void World::Impl::integrate_positions(float h) {
+  BodyStore& s = bodies;
+  const std::size_t m = slot_of_body.size();
+  detail::parallel_for(m, kBodyChunk, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t b = begin; b < end; ++b) {
+      detail::SolverBody& sb = solver_bodies[b];
+      const uint32_t i = slot_of_body[b];
+      const vec3 v{sb.v[0], sb.v[1], sb.v[2]}, w{sb.w[0], sb.w[1], sb.w[2]};
+      const vec3 dp = v * h;
+      s.px[i] += dp.x, s.py[i] += dp.y, s.pz[i] += dp.z;
+      sb.dp[0] += dp.x, sb.dp[1] += dp.y, sb.dp[2] += dp.z;
+      const quat q = s.orientation(i);
+      const quat spin = quat{w.x, w.y, w.z, 0.0f} * q;
+      const quat qn = normalized(q + spin * (0.5f * h));
+      s.set_orientation(i, qn);
+      const quat d = qn * conjugate(quat{q0[4 * b], q0[4 * b + 1], q0[4 * b + 2], q0[4 * b + 3]});
+      sb.dq[0] = d.x, sb.dq[1] = d.y, sb.dq[2] = d.z, sb.dq[3] = d.w;
+    }
+  });
+}
+
+void World::Impl::write_back() {
+  BodyStore& s = bodies;
+  const std::size_t m = slot_of_body.size();
+  for (std::size_t b = 0; b < m; ++b) {
+    const detail::SolverBody& sb = solver_bodies[b];
+    if (!sb.dynamic) continue;
+    const uint32_t i = slot_of_body[b];
+    s.vx[i] = sb.v[0], s.vy[i] = sb.v[1], s.vz[i] = sb.v[2];
+    s.wx[i] = sb.w[0], s.wy[i] = sb.w[1], s.wz[i] = sb.w[2];
+  }
+}
+
+void World::Impl::update_sleep(float dt) {
+  BodyStore& s = bodies;
+  const uint32_t n = s.size();
+  const float lv = def.sleep_linear_velocity, av = def.sleep_angular_velocity;
+  for (uint32_t i = 0; i < n; ++i) {
+    if (!s.is_dynamic(i) || !s.is_awake(i)) continue;
+    const bool still = (s.flags[i] & detail::kBodyAllowSleep) && length_squared(s.linear_velocity(i)) <= lv * lv &&
+                       length_squared(s.angular_velocity(i)) <= av * av;
+    s.sleep_time[i] = still ? s.sleep_time[i] + dt : 0.0f;
+  }
+  // A body touching a moving kinematic body must stay awake.
+  for (const detail::ContactRecord& r : contacts.records()) {
+    if (!r.touching()) continue;
+    for (int side = 0; side < 2; ++side) {
+      const uint32_t k = side ? r.slot_b : r.slot_a, o = side ? r.slot_a : r.slot_b;
+      if (s.type[k] == uint32_t(BodyType::kinematic) &&
+          (length_squared(s.linear_velocity(k)) > 0.0f || length_squared(s.angular_velocity(k)) > 0.0f))
+        s.sleep_time[o] = 0.0f;
+    }
+  }
+  if (!def.enable_sleep) return;
+  const uint32_t ni = islands.count();
+  island_rest.assign(ni, 3.0e38f);
+  for (uint32_t i = 0; i < n; ++i) {
+    const uint32_t k = islands.island_of(i);
+    if (k == detail::Islands::kNone) continue;
+    const float t = s.is_awake(i) ? s.sleep_time[i] : 3.0e38f;
+    island_rest[k] = t < island_rest[k] ? t : island_rest[k];
+  }
+  for (uint32_t i = 0; i < n; ++i) {
+    const uint32_t k = islands.island_of(i);
+    if (k == detail::Islands::kNone || !s.is_awake(i) || island_rest[k] < def.sleep_time) continue;
+    s.flags[i] &= ~detail::kBodyAwake;
+    s.set_linear_velocity(i, {});
+    s.set_angular_velocity(i, {});
+  }
+}
+
+void World::Impl::step(float dt) {
+  BodyStore& s = bodies;
+  const uint32_t n = s.size();
+  timings = StepTimings{};
+  stats = StepStats{};
+  const auto t_start = Clock::now();
+
+  // Forces: which bodies move this step (the rest are skipped by every later stage).
+  auto t0 = Clock::now();
+  active.resize(n);
+  for (uint32_t i = 0; i < n; ++i)
+    active[i] = uint8_t((s.is_dynamic(i) && s.is_awake(i)) || s.type[i] == uint32_t(BodyType::kinematic));
+  timings.forces = ms_since(t0);
+
+  t0 = Clock::now();
+  find_pairs(dt);
+  timings.broadphase = ms_since(t0);
+
+  t0 = Clock::now();
+  if (!candidates.empty() || !contacts.records().empty()) {
+    detail::ContactSettings cs;
+    cs.speculative_distance = 4.0f * def.linear_slop;
+    cs.continuous = def.enable_continuous;
+    cs.dt = dt;
+    contacts.update(s, candidates, active.data(), cs);
+  }
+  timings.narrowphase = ms_since(t0);
+
+  t0 = Clock::now();
+  wake_islands();
+  timings.islands = ms_since(t0);
+
+  t0 = Clock::now();
+  build_solver_bodies();
+  if (!slot_of_body.empty()) {
+    const bool soft = def.contact_model == ContactModel::soft_step;
+    const uint32_t substeps = soft ? def.substeps : 1;
+    const float h = dt / float(substeps);
+    detail::SolverBodies sbv;
+    sbv.bodies = solver_bodies.data();
+    sbv.inv_inertia = inv_inertia.data();
+    sbv.inv_mass = inv_mass.data();
+    sbv.writable = writable.data();
+    sbv.index_of_slot = index_of_slot.data();
+    sbv.count = slot_of_body.size();
+    stats.colors = solver.prepare(s, contacts.records(), sbv, def, dt, h);
+    const detail::BiasMode bias = def.contact_model == ContactModel::soft_step   ? detail::BiasMode::soft
+                                  : def.contact_model == ContactModel::baumgarte ? detail::BiasMode::baumgarte
+                                                                                 : detail::BiasMode::none;
+    for (uint32_t sub = 0; sub < substeps; ++sub) {
+      integrate_velocities(h);
+      solver.warm_start();
+      for (uint32_t it = 0; it < def.velocity_iterations; ++it) solver.solve(bias);
+      integrate_positions(h);
+      if (soft)
+        for (uint32_t it = 0; it < def.relax_iterations; ++it) solver.solve(detail::BiasMode::none);
+    }
+    if (def.contact_model == ContactModel::linear_projection)
+      for (uint32_t it = 0; it < def.position_iterations; ++it) solver.project_positions(s, slot_of_body.data());
+    solver.restitution();
+    solver.store_impulses(contacts.records());
+    write_back();
+  }
+  update_sleep(dt);
+  timings.solver = ms_since(t0);
+
+  t0 = Clock::now();
+  if (particles && !particles->empty()) particles->step(dt);
+  timings.particles = ms_since(t0);
+
+  for (uint32_t i = 0; i < n; ++i) s.fx[i] = s.fy[i] = s.fz[i] = s.tx[i] = s.ty[i] = s.tz[i] = 0.0f;
+
+  stats.bodies = n;
+  for (uint32_t i = 0; i < n; ++i) stats.awake_bodies += (s.is_dynamic(i) && s.is_awake(i)) ? 1u : 0u;
+  stats.pairs = uint32_t(candidates.size());
+  for (const detail::ContactRecord& r : contacts.records()) {
+    stats.manifolds += r.manifold.count > 0 ? 1u : 0u;
+    stats.contacts += r.manifold.count;
+  }
+  stats.islands = islands.count();
+  ++steps;
+  timings.total = ms_since(t_start);
+}
+
+}  // namespace gyro

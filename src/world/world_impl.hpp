@@ -1,0 +1,56 @@
+// World::Impl: the state a world owns, and the stages of a step (step.cpp).
+#pragma once
+
+#include "core/columns.hpp"
+#include "dynamics/body_store.hpp"
+#include "dynamics/broadphase.hpp"
+#include "dynamics/contact_solver.hpp"
+#include "dynamics/contacts.hpp"
+#include "dynamics/islands.hpp"
+#include "gyro/world.hpp"
+
+#include <memory>
+#include <vector>
+
+namespace gyro {
+
+struct World::Impl {
+  WorldDef def;
+  detail::BodyStore bodies;
+  detail::ContactSet contacts;
+  detail::Broadphase broadphase;
+  detail::Islands islands;
+  detail::ContactSolver solver;
+  std::unique_ptr<ParticleSystem> particles;  // created on first use: a world without particles pays nothing
+  StepTimings timings;
+  StepStats stats;
+  uint64_t steps = 0;
+
+  // Step scratch, kept between steps so a warmed-up step does not allocate.
+  std::vector<uint8_t> active, broad_flags;
+  std::vector<float> bmin_x, bmin_y, bmin_z, bmax_x, bmax_y, bmax_z;
+  std::vector<uint32_t> broad_slot, broad_key, broad_cat, broad_mask;
+  std::vector<detail::BroadPair> broad_pairs;
+  std::vector<detail::CandidatePair> candidates;
+  std::vector<uint32_t> planes;
+  std::vector<detail::SolverBody> solver_bodies;
+  std::vector<float> inv_inertia, inv_mass;
+  std::vector<uint8_t> writable;
+  std::vector<uint32_t> index_of_slot, slot_of_body;
+  std::vector<float> q0;  // orientation at the step start, 4 per solver body
+  std::vector<float> lin_acc, ang_acc;  // 3 per solver body: constant over the step
+  std::vector<uint8_t> island_awake;
+  std::vector<float> island_rest;
+
+  void step(float dt);
+  void find_pairs(float dt);
+  void wake_islands();
+  void build_solver_bodies();
+  void integrate_velocities(float h);
+  void integrate_positions(float h);
+  void write_back();
+  void update_sleep(float dt);
+  void wake(uint32_t slot);
+};
+
+}  // namespace gyro

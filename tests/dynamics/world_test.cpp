@@ -1,0 +1,291 @@
+// The world's API, integration against closed forms, bad input, events, sleeping, the
+// determinism witness and the no-allocation-per-step rule.
+#include "world_scenes.hpp"
+#include "gyro/runtime.hpp"
+
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cmath>
+#include <cstdlib>
+#include <new>
+
+// Counts heap allocations made by this process (the whole test binary shares it; tests read
+// the difference across the code they watch).
+static std::atomic<uint64_t> g_allocations{0};
+void* operator new(std::size_t n) {
+  g_allocations.fetch_add(1, std::memory_order_relaxed);
+  if (void* p = std::malloc(n ? n : 1)) return p;
+  throw std::bad_alloc();
+}
+void* operator new(std::size_t n, std::align_val_t a) {
+  g_allocations.fetch_add(1, std::memory_order_relaxed);
+  const std::size_t al = static_cast<std::size_t>(a);
+  if (void* p = std::aligned_alloc(al, (n + al - 1) / al * al)) return p;
+  throw std::bad_alloc();
+}
+void* operator new(std::size_t n, std::align_val_t a, const std::nothrow_t&) noexcept {
+  g_allocations.fetch_add(1, std::memory_order_relaxed);
+  const std::size_t al = static_cast<std::size_t>(a);
+  return std::aligned_alloc(al, (n + al - 1) / al * al);
+}
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+void operator delete(void* p, std::align_val_t) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t, std::align_val_t) noexcept { std::free(p); }
+
+namespace gyro {
+namespace {
+
+using test::add_box;
+using test::add_ground;
+using test::make_world;
+using test::position_of;
+
+TEST(World, FreeFallMatchesClosedFormWithinTheIntegratorsError) {
+  // Semi-implicit Euler per sub-step h: y(t) = y0 - g t^2 / 2 - g t h / 2 exactly (up to rounding).
+  for (uint32_t substeps : {1u, 4u}) {
+    WorldDef def;
+    def.substeps = substeps;
+    auto w = make_world(def);
+    const BodyId b = add_box(*w, {0.0f, 100.0f, 0.0f});
+    const float dt = 1.0f / 60.0f;
+    for (int i = 0; i < 120; ++i) ASSERT_EQ(w->step(dt), Status::ok);
+    const double t = 2.0, g = 9.81, h = double(dt) / substeps;
+    const double exact = 100.0 - 0.5 * g * t * t;
+    const double predicted = exact - 0.5 * g * t * h;  // the scheme's own error term
+    const double y = position_of(*w, b).y;
+    EXPECT_NEAR(y, predicted, 2e-4) << "substeps " << substeps;
+    EXPECT_NEAR(y, exact, 0.5 * g * t * h + 2e-4);  // error bound stated per integrator: g t h / 2
+  }
+}
+
+TEST(World, ProjectileRange) {
+  auto w = make_world();
+  BodyDef d;
+  d.shape.type = BodyShape::sphere;
+  d.shape.radius = 0.1f;
+  d.linear_velocity = {10.0f, 10.0f, 0.0f};
+  BodyId b;
+  ASSERT_EQ(w->create_body(d, &b), Status::ok);
+  const float dt = 1.0f / 240.0f;
+  for (int i = 0; i < 240; ++i) w->step(dt);
+  const vec3 p = position_of(*w, b);
+  EXPECT_NEAR(p.x, 10.0, 1e-4);
+  const double h = (1.0 / 240.0) / WorldDef{}.substeps;  // semi-implicit Euler error: g t h / 2
+  EXPECT_NEAR(p.y, 10.0 - 0.5 * 9.81 - 0.5 * 9.81 * h, 1e-3);
+}
+
+TEST(World, TorqueFreeSpinningBoxConservesMomentumAndEnergy) {
+  WorldDef def;
+  def.gravity = {};
+  auto w = make_world(def);
+  BodyDef d;
+  d.shape.half_extents = {0.1f, 0.5f, 1.0f};
+  d.mass = 2.0f;
+  d.angular_velocity = {4.0f, 0.2f, 0.1f};  // about the major axis (x: stable) with a wobble
+  BodyId b;
+  ASSERT_EQ(w->create_body(d, &b), Status::ok);
+  auto invariants = [&](double* L, double* E) {
+    vec3 wv;
+    quat q;
+    w->get_velocity(b, nullptr, &wv);
+    w->get_transform(b, nullptr, &q);
+    const double m = 2.0, hx = 0.1, hy = 0.5, hz = 1.0;
+    const double I[3] = {m * (hy * hy + hz * hz) / 3, m * (hx * hx + hz * hz) / 3, m * (hx * hx + hy * hy) / 3};
+    const vec3 wb = rotate(conjugate(q), wv);
+    const double lb[3] = {I[0] * wb.x, I[1] * wb.y, I[2] * wb.z};
+    *L = std::sqrt(lb[0] * lb[0] + lb[1] * lb[1] + lb[2] * lb[2]);
+    *E = 0.5 * (lb[0] * wb.x + lb[1] * wb.y + lb[2] * wb.z);
+    // World-frame momentum direction: rotate the body-frame L back.
+    const vec3 lw = rotate(q, vec3{float(lb[0]), float(lb[1]), float(lb[2])});
+    L[1] = lw.x, L[2] = lw.y, L[3] = lw.z;
+  };
+  double L0[4], E0, L1[4], E1;
+  invariants(L0, &E0);
+  for (int i = 0; i < 600; ++i) ASSERT_EQ(w->step(1.0f / 60.0f), Status::ok);
+  invariants(L1, &E1);
+  // The implicit gyroscopic step is stable and slightly dissipative: stated tolerance 2% over 10 s.
+  EXPECT_NEAR(L1[0], L0[0], 0.02 * L0[0]);
+  EXPECT_NEAR(E1, E0, 0.02 * E0);
+  for (int k = 1; k < 4; ++k) EXPECT_NEAR(L1[k], L0[k], 0.03 * L0[0]) << "component " << k;
+}
+
+TEST(World, BadInputChangesNothing) {
+  auto w = make_world();
+  add_ground(*w);
+  const BodyId b = add_box(*w, {0.0f, 2.0f, 0.0f});
+  w->step(1.0f / 60.0f);
+  const uint64_t h0 = w->hash();
+  const float nan = std::nanf(""), inf = INFINITY;
+  BodyId out;
+  BodyDef d;
+  d.position = {nan, 0.0f, 0.0f};
+  EXPECT_EQ(w->create_body(d, &out), Status::non_finite);
+  d = BodyDef{};
+  d.mass = -1.0f;
+  EXPECT_EQ(w->create_body(d, &out), Status::invalid_argument);
+  d.mass = nan;
+  EXPECT_EQ(w->create_body(d, &out), Status::invalid_argument);
+  d = BodyDef{};
+  d.shape.half_extents = {0.0f, 1.0f, 1.0f};
+  EXPECT_EQ(w->create_body(d, &out), Status::invalid_argument);
+  d = BodyDef{};
+  d.shape.type = BodyShape::sphere;
+  d.shape.radius = -1.0f;
+  EXPECT_EQ(w->create_body(d, &out), Status::invalid_argument);
+  d = BodyDef{};
+  d.orientation = {0.0f, 0.0f, 0.0f, 0.0f};
+  EXPECT_EQ(w->create_body(d, &out), Status::invalid_argument);
+  d = BodyDef{};
+  d.shape.type = BodyShape::plane;
+  EXPECT_EQ(w->create_body(d, &out), Status::invalid_argument);  // a dynamic plane
+  d = BodyDef{};
+  d.shape.type = BodyShape::mesh;
+  d.type = BodyType::static_body;
+  EXPECT_EQ(w->create_body(d, &out), Status::null_argument);
+  EXPECT_EQ(w->create_body(BodyDef{}, nullptr), Status::null_argument);
+  EXPECT_EQ(w->apply_force_at_center(b, {inf, 0.0f, 0.0f}), Status::non_finite);
+  EXPECT_EQ(w->apply_linear_impulse(b, {0.0f, nan, 0.0f}, {}), Status::non_finite);
+  EXPECT_EQ(w->set_velocity(b, {nan, 0.0f, 0.0f}, {}), Status::non_finite);
+  EXPECT_EQ(w->set_transform(b, {}, quat{0.0f, 0.0f, 0.0f, 0.0f}), Status::invalid_argument);
+  EXPECT_EQ(w->step(0.0f), Status::invalid_argument);
+  EXPECT_EQ(w->step(-1.0f), Status::invalid_argument);
+  EXPECT_EQ(w->step(nan), Status::invalid_argument);
+  EXPECT_EQ(w->step(inf), Status::invalid_argument);
+  const BodyId stale{b.index, b.generation + 1};
+  EXPECT_EQ(w->set_velocity(stale, {}, {}), Status::stale_id);
+  EXPECT_EQ(w->destroy_body(stale), Status::stale_id);
+  EXPECT_EQ(w->destroy_body(BodyId{}), Status::stale_id);
+  EXPECT_EQ(w->hash(), h0);
+
+  WorldDef bad;
+  std::unique_ptr<World> none;
+  bad.gravity = {nan, 0.0f, 0.0f};
+  EXPECT_EQ(World::create(bad, &none), Status::non_finite);
+  bad = WorldDef{};
+  bad.substeps = 0;
+  EXPECT_EQ(World::create(bad, &none), Status::invalid_argument);
+  EXPECT_EQ(none, nullptr);
+}
+
+TEST(World, DestroyedIdsAreStaleAndSlotsStayDense) {
+  auto w = make_world();
+  const BodyId a = add_box(*w, {0.0f, 1.0f, 0.0f}), b = add_box(*w, {3.0f, 1.0f, 0.0f});
+  const BodyId c = add_box(*w, {6.0f, 1.0f, 0.0f});
+  ASSERT_EQ(w->destroy_body(a), Status::ok);
+  EXPECT_FALSE(w->is_valid(a));
+  EXPECT_TRUE(w->is_valid(b) && w->is_valid(c));
+  EXPECT_EQ(w->body_count(), 2u);
+  const BodyView v = w->bodies();
+  ASSERT_EQ(v.count, 2u);
+  for (std::size_t i = 0; i < v.count; ++i) {
+    vec3 p;
+    ASSERT_EQ(w->get_transform(v.ids[i], &p, nullptr), Status::ok);
+    EXPECT_EQ(p.x, v.px[i]);
+  }
+  const BodyId d = add_box(*w, {9.0f, 1.0f, 0.0f});
+  EXPECT_EQ(d.index, a.index);  // the index is reused with a new generation
+  EXPECT_NE(d.generation, a.generation);
+}
+
+TEST(World, BoxComesToRestOnGroundAndEventsReportTheTouch) {
+  auto w = make_world();
+  const BodyId g = add_ground(*w);
+  const BodyId b = add_box(*w, {0.0f, 1.0f, 0.0f});
+  int begins = 0, ends = 0;
+  for (int i = 0; i < 120; ++i) {
+    w->step(1.0f / 60.0f);
+    const ContactEvent* e;
+    const std::size_t nb = w->begin_events(&e);
+    for (std::size_t k = 0; k < nb; ++k) {
+      EXPECT_TRUE((e[k].a == g && e[k].b == b) || (e[k].a == b && e[k].b == g));
+      ++begins;
+    }
+    ends += int(w->end_events(nullptr));
+  }
+  EXPECT_EQ(begins, 1);
+  EXPECT_EQ(ends, 0);
+  EXPECT_NEAR(position_of(*w, b).y, 0.5, 0.01);
+}
+
+TEST(World, RestingBodiesSleepAndWakeOnImpulse) {
+  auto w = make_world();
+  add_ground(*w);
+  const BodyId b = add_box(*w, {0.0f, 0.5f, 0.0f});
+  const BodyId c = add_box(*w, {0.0f, 1.5f, 0.0f});
+  bool awake = true;
+  for (int i = 0; i < 180 && awake; ++i) {
+    w->step(1.0f / 60.0f);
+    w->is_awake(c, &awake);
+  }
+  EXPECT_FALSE(awake);
+  w->is_awake(b, &awake);
+  EXPECT_FALSE(awake);  // the island sleeps as a whole
+  EXPECT_EQ(w->stats().awake_bodies, 0u);
+  const uint64_t h = w->hash();
+  for (int i = 0; i < 10; ++i) w->step(1.0f / 60.0f);
+  vec3 p;
+  w->get_transform(c, &p, nullptr);
+  EXPECT_NEAR(p.y, 1.5, 0.02);
+  EXPECT_NE(h, w->hash());  // the step counter moves, the bodies do not
+  ASSERT_EQ(w->apply_linear_impulse(b, {3.0f, 0.0f, 0.0f}, position_of(*w, b)), Status::ok);
+  w->step(1.0f / 60.0f);
+  w->is_awake(c, &awake);
+  EXPECT_TRUE(awake);  // woken through the island
+}
+
+uint64_t run_pile(uint32_t threads, SimdLevel level, int steps) {
+  EXPECT_EQ(set_simd_level(level), Status::ok);
+  WorldDef def;
+  def.threads = threads;
+  auto w = make_world(def);
+  add_ground(*w);
+  test::add_pyramid(*w, 8);
+  BodyDef s;
+  s.shape.type = BodyShape::sphere;
+  s.shape.radius = 0.3f;
+  s.position = {0.3f, 12.0f, 0.1f};
+  s.restitution = 0.5f;
+  BodyId id;
+  w->create_body(s, &id);
+  for (int i = 0; i < steps; ++i) w->step(1.0f / 60.0f);
+  set_simd_level(SimdLevel::automatic);
+  return w->hash();
+}
+
+TEST(World, HashIsIdenticalAcrossThreadsAndSimdLevels) {
+  const uint64_t ref = run_pile(1, SimdLevel::scalar, 90);
+  for (SimdLevel level : {SimdLevel::scalar, SimdLevel::sse2, SimdLevel::avx2, SimdLevel::avx512, SimdLevel::neon}) {
+    if (!simd_level_available(level)) continue;
+    for (uint32_t t : {1u, 2u, 3u}) EXPECT_EQ(run_pile(t, level, 90), ref) << simd_level_name(level) << " x" << t;
+  }
+}
+
+TEST(World, NoHeapAllocationPerStepAfterWarmUp) {
+  WorldDef def;
+  def.threads = 1;
+  auto w = make_world(def);
+  add_ground(*w);
+  test::add_pyramid(*w, 10);
+  for (int i = 0; i < 60; ++i) w->step(1.0f / 60.0f);
+  const uint64_t before = g_allocations.load();
+  for (int i = 0; i < 60; ++i) w->step(1.0f / 60.0f);
+  EXPECT_EQ(g_allocations.load() - before, 0u);
+}
+
+TEST(World, EmptyAndStaticWorldsSkipTheStages) {
+  auto w = make_world();
+  for (int i = 0; i < 3; ++i) ASSERT_EQ(w->step(1.0f / 60.0f), Status::ok);
+  add_ground(*w);
+  add_ground(*w, 5.0f);
+  w->step(1.0f / 60.0f);  // scratch sized for the new body count once
+  const uint64_t before = g_allocations.load();
+  for (int i = 0; i < 10; ++i) w->step(1.0f / 60.0f);
+  EXPECT_EQ(g_allocations.load() - before, 0u);
+  EXPECT_EQ(w->stats().pairs, 0u);
+  EXPECT_EQ(w->stats().contacts, 0u);
+}
+
+}  // namespace
+}  // namespace gyro
