@@ -523,7 +523,7 @@ typedef struct gyro_world_def {
   uint32_t threads;             /**< 0: gyro_get_thread_count() */
 } gyro_world_def;
 
-/** gyro::WorldDef's defaults: soft step, 4 sub-steps, 1 velocity iteration, sleep on. */
+/** gyro::WorldDef's defaults (gyro/world.hpp): the soft step with its sub-steps, sleeping on. */
 GYRO_API gyro_world_def gyro_world_def_default(void);
 /** Errors (*out untouched): NULL_ARGUMENT, NON_FINITE, INVALID_ARGUMENT (struct_size,
  *  contact_model, a boolean, iterations or sub-steps outside 1..64, negative slop, ...). */

@@ -35,13 +35,6 @@ vec3 sym_mul(const float* m, const vec3& x) {
           (m[2] * x.x + m[4] * x.y) + m[5] * x.z};
 }
 
-float effective_mass(float ma, float mb, const float* ia, const float* ib, const vec3& ra, const vec3& rb,
-                     const vec3& d) {
-  const vec3 rna = cross(ra, d), rnb = cross(rb, d);
-  const float k = (ma + mb) + (dot(rna, sym_mul(ia, rna)) + dot(rnb, sym_mul(ib, rnb)));
-  return k > 0.0f ? 1.0f / k : 0.0f;
-}
-
 vec3 body_v(const SolverBody& b) { return {b.v[0], b.v[1], b.v[2]}; }
 vec3 body_w(const SolverBody& b) { return {b.w[0], b.w[1], b.w[2]}; }
 
@@ -63,6 +56,8 @@ uint32_t ContactSolver::prepare(const BodyStore& s, const std::vector<ContactRec
     record_.push_back(r), cand_a_.push_back(a), cand_b_.push_back(b);
   }
   count_ = record_.size();
+  any_restitution_ = false;
+  for (uint32_t r : record_) any_restitution_ = any_restitution_ || records[r].restitution > 0.0f;
 
   // 2. Colours, and the padded SoA layout.
   graph_.color(cand_a_.data(), cand_b_.data(), count_, sb.writable, sb.count + 1, kConstraintAlign, plan_);
@@ -103,18 +98,26 @@ uint32_t ContactSolver::prepare(const BodyStore& s, const std::vector<ContactRec
       f[kT2x][k] = t2.x, f[kT2y][k] = t2.y, f[kT2z][k] = t2.z;
       f[kFriction][k] = rec.friction, f[kRestitution][k] = rec.restitution;
       f[kMassA][k] = ma, f[kMassB][k] = mb;
-      for (uint32_t x = 0; x < 6; ++x) f[kIa0 + x][k] = ia[x], f[kIb0 + x][k] = ib[x];
       const vec3 pa = s.position(rec.slot_a), pb = s.position(rec.slot_b);
       const SolverBody &ba = sb.bodies[a], &bb = sb.bodies[b];
+      const vec3 dirs[3] = {n, t1, t2};
       for (uint32_t j = 0; j < rec.manifold.count; ++j) {
         const ContactPoint& cp = rec.manifold.points[j];
         const vec3 ra = cp.position - pa, rb = cp.position - pb;
-        f[point_field(j, kRax)][k] = ra.x, f[point_field(j, kRay)][k] = ra.y, f[point_field(j, kRaz)][k] = ra.z;
-        f[point_field(j, kRbx)][k] = rb.x, f[point_field(j, kRby)][k] = rb.y, f[point_field(j, kRbz)][k] = rb.z;
-        f[point_field(j, kSeparation)][k] = cp.separation - dot(rb - ra, n);
-        f[point_field(j, kNormalMass)][k] = effective_mass(ma, mb, ia, ib, ra, rb, n);
-        f[point_field(j, kTangentMass1)][k] = effective_mass(ma, mb, ia, ib, ra, rb, t1);
-        f[point_field(j, kTangentMass2)][k] = effective_mass(ma, mb, ia, ib, ra, rb, t2);
+        float mass[3];
+        for (uint32_t d = 0; d < 3; ++d) {
+          const vec3 arm_a = cross(ra, dirs[d]), arm_b = cross(rb, dirs[d]);
+          const vec3 imp_a = sym_mul(ia, arm_a), imp_b = sym_mul(ib, arm_b);
+          const vec3 v[4] = {arm_a, arm_b, imp_a, imp_b};
+          for (uint32_t q = 0; q < 4; ++q)
+            for (uint32_t c = 0; c < 3; ++c) f[point_field(j, q * 9 + 3 * d + c)][k] = v[q][int(c)];
+          const float kk = (ma + mb) + (dot(arm_a, imp_a) + dot(arm_b, imp_b));
+          mass[d] = kk > 0.0f ? 1.0f / kk : 0.0f;
+        }
+        f[point_field(j, kSeparation)][k] = cp.separation;
+        f[point_field(j, kNormalMass)][k] = mass[0];
+        f[point_field(j, kTangentMass1)][k] = mass[1];
+        f[point_field(j, kTangentMass2)][k] = mass[2];
         if (warm) {
           f[point_field(j, kNormalImpulse)][k] = rec.normal_impulse[j];
           f[point_field(j, kTangentImpulse1)][k] = rec.tangent_impulse1[j];
@@ -168,7 +171,7 @@ void ContactSolver::solve(BiasMode mode) {
 }
 
 void ContactSolver::restitution() {
-  if (count_ == 0) return;
+  if (count_ == 0 || !any_restitution_) return;
   run(GYRO_DISPATCH(contact_restitution), args_for(BiasMode::none));
 }
 
@@ -186,13 +189,14 @@ void ContactSolver::project_positions(BodyStore& s, const uint32_t* slot_of_body
         if (!(ma + mb > 0.0f)) continue;
         const vec3 nrm{f[kNx][k], f[kNy][k], f[kNz][k]};
         const vec3 d0 = vec3{bb.dp[0], bb.dp[1], bb.dp[2]} - vec3{ba.dp[0], ba.dp[1], ba.dp[2]};
-        const quat qa{ba.dq[0], ba.dq[1], ba.dq[2], ba.dq[3]}, qb{bb.dq[0], bb.dq[1], bb.dq[2], bb.dq[3]};
+        const vec3 ta{ba.dtheta[0], ba.dtheta[1], ba.dtheta[2]}, tb{bb.dtheta[0], bb.dtheta[1], bb.dtheta[2]};
         float deepest = 0.0f;
         for (uint32_t j = 0; j < 4; ++j) {
           if (f[point_field(j, kNormalMass)][k] == 0.0f) continue;
-          const vec3 ra{f[point_field(j, kRax)][k], f[point_field(j, kRay)][k], f[point_field(j, kRaz)][k]};
-          const vec3 rb{f[point_field(j, kRbx)][k], f[point_field(j, kRby)][k], f[point_field(j, kRbz)][k]};
-          const float sep = dot(d0 + (rotate(qb, rb) - rotate(qa, ra)), nrm) + f[point_field(j, kSeparation)][k];
+          auto arm = [&](uint32_t base) {
+            return vec3{f[point_field(j, base)][k], f[point_field(j, base + 1)][k], f[point_field(j, base + 2)][k]};
+          };
+          const float sep = ((dot(d0, nrm) + dot(tb, arm(kArmB))) - dot(ta, arm(kArmA))) + f[point_field(j, kSeparation)][k];
           deepest = sep < deepest ? sep : deepest;
         }
         const float depth = -(deepest + slop);

@@ -24,12 +24,12 @@ namespace detail {
 inline constexpr std::size_t kConstraintAlign = 16;
 
 struct alignas(64) SolverBody {
-  float v[3];    ///< linear velocity
-  float w[3];    ///< angular velocity (world)
-  float dp[3];   ///< displacement since the start of the step
-  float dq[4];   ///< rotation since the start of the step (x, y, z, w)
-  uint32_t dynamic;  ///< written by the solver
-  float pad[2];
+  float v[3];       ///< linear velocity
+  float w[3];       ///< angular velocity (world)
+  float dp[3];      ///< displacement since the start of the step
+  float dtheta[3];  ///< rotation since the start of the step, as the sum of h w (small angles)
+  uint32_t dynamic; ///< written by the solver
+  float pad[3];
 };
 static_assert(sizeof(SolverBody) == 64);
 
@@ -37,14 +37,19 @@ static_assert(sizeof(SolverBody) == 64);
 enum ConstraintField : uint32_t {
   kNx, kNy, kNz, kT1x, kT1y, kT1z, kT2x, kT2y, kT2z,
   kFriction, kRestitution, kMassA, kMassB,
-  kIa0, kIa1, kIa2, kIa3, kIa4, kIa5,  // inverse world inertia of a: xx xy xz yy yz zz
-  kIb0, kIb1, kIb2, kIb3, kIb4, kIb5,
   kPointBase,
 };
-// Per point j, field kPointBase + j * kPointFields + offset.
+// Per point j, field kPointBase + j * kPointFields + offset. For each direction d (normal,
+// tangent 1, tangent 2) the point stores the lever arms ra x d, rb x d and their images under
+// the inverse world inertia, so a pass needs no matrix and no anchor: the impulse along d
+// changes wa by -(Ia (ra x d)) lambda and the velocity along d reads dot(wb, rb x d) -
+// dot(wa, ra x d).
 enum PointField : uint32_t {
-  kRax, kRay, kRaz, kRbx, kRby, kRbz,
-  kSeparation,     ///< adjusted: separation - dot(rB - rA, n), so s = dot(d, n) + this
+  kArmA = 0,       ///< + 3 * direction: ra x d (3 floats)
+  kArmB = 9,       ///< rb x d
+  kImpA = 18,      ///< Ia (ra x d)
+  kImpB = 27,      ///< Ib (rb x d)
+  kSeparation = 36,  ///< at the start of the step; moves with dp and dtheta
   kNormalMass, kTangentMass1, kTangentMass2,
   kNormalImpulse, kTangentImpulse1, kTangentImpulse2,
   kMaxNormalImpulse, kRelativeVelocity,
@@ -139,6 +144,7 @@ class ContactSolver {
   std::vector<Column<float>> fields_ = std::vector<Column<float>>(kConstraintFields);
   std::vector<float*> field_ptrs_ = std::vector<float*>(kConstraintFields);
   std::size_t count_ = 0;
+  bool any_restitution_ = false;
   uint32_t passes_ = 0;  // solve passes this step: odd ones visit the points in reverse
   SolverBodies sb_;
   const WorldDef* def_ = nullptr;

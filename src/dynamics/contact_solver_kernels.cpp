@@ -15,22 +15,28 @@ using detail::ContactKernelArgs;
 using detail::SolverBody;
 namespace cf = detail;
 
-// Element `field` of the bodies named by idx[i..i+width).
+// Element `field` of the bodies named by idx[i..i+width): a hardware gather where the level
+// has one (AVX2, AVX-512; xsimd emulates it elsewhere). Gathers move floats without
+// arithmetic, so every level reads the same bits.
 template <class L> inline L gather(const SolverBody* bodies, const uint32_t* idx, std::size_t i, std::size_t field) {
   if constexpr (std::is_same_v<L, float>) {
     return reinterpret_cast<const float*>(bodies + idx[i])[field];
-  } else {
-    alignas(64) float buf[width_v<L>];
-    for (std::size_t k = 0; k < width_v<L>; ++k) buf[k] = reinterpret_cast<const float*>(bodies + idx[i + k])[field];
-    return load<L>(buf);
   }
+#if !defined(GYRO_ARCH_SCALAR)
+  else {
+    using batch_f = typename L::batch_f;
+    using batch_i = xsimd::batch<int32_t, typename batch_f::arch_type>;
+    const batch_i offsets = batch_i::load_unaligned(reinterpret_cast<const int32_t*>(idx + i)) << 4;  // 16 floats a body
+    return L(batch_f::gather(reinterpret_cast<const float*>(bodies) + field, offsets));
+  }
+#endif
 }
 
 template <class L> inline V3<L> gather3(const SolverBody* bodies, const uint32_t* idx, std::size_t i, std::size_t field) {
   return {gather<L>(bodies, idx, i, field), gather<L>(bodies, idx, i, field + 1), gather<L>(bodies, idx, i, field + 2)};
 }
 
-constexpr std::size_t kV = 0, kW = 3, kDp = 6, kDq = 9;
+constexpr std::size_t kV = 0, kW = 3, kDp = 6, kDtheta = 9;
 
 // Writes v and w back to the dynamic bodies among idx[i..i+width).
 template <class L>
@@ -52,43 +58,30 @@ inline void scatter_vw(SolverBody* bodies, const uint32_t* idx, std::size_t i, c
   }
 }
 
-// Symmetric 3x3 (xx xy xz yy yz zz) times a vector.
-template <class L> struct Sym3 {
-  L m[6];
-  V3<L> operator*(const V3<L>& x) const {
-    return {(m[0] * x.x + m[1] * x.y) + m[2] * x.z, (m[1] * x.x + m[3] * x.y) + m[4] * x.z,
-            (m[2] * x.x + m[4] * x.y) + m[5] * x.z};
-  }
-};
-
-template <class L> inline V3<L> rotate(const V3<L>& u, L w, const V3<L>& v) {
-  const V3<L> t = cross(u, v) * L(2.0f);
-  return (v + t * w) + cross(u, t);
-}
-
 template <class L> struct Lanes {
   const ContactKernelArgs& a;
   std::size_t i;
   L field(uint32_t f) const { return load<L>(a.f[f] + i); }
   void set(uint32_t f, L v) const { store(a.f[f] + i, v); }
   V3<L> field3(uint32_t f) const { return {field(f), field(f + 1), field(f + 2)}; }
-  Sym3<L> sym(uint32_t f) const { return {{field(f), field(f + 1), field(f + 2), field(f + 3), field(f + 4), field(f + 5)}}; }
+  // Point j's lever arm / inertia image (base kArmA, kArmB, kImpA or kImpB) along direction d.
+  V3<L> point3(uint32_t j, uint32_t base, uint32_t d) const { return field3(cf::point_field(j, base + 3 * d)); }
 };
 
 template <class L> struct Pair {
   V3<L> va, wa, vb, wb;
   L ma, mb;
-  Sym3<L> ia, ib;
 
-  // Applies impulse p at anchors ra, rb (equal and opposite).
-  void apply(const V3<L>& p, const V3<L>& ra, const V3<L>& rb) {
-    va = va - p * ma;
-    wa = wa - ia * cross(ra, p);
-    vb = vb + p * mb;
-    wb = wb + ib * cross(rb, p);
+  // Velocity of b relative to a at point j along direction d (unit vector dir).
+  L along(const Lanes<L>& c, uint32_t j, uint32_t d, const V3<L>& dir) const {
+    return (dot(vb - va, dir) + dot(wb, c.point3(j, cf::kArmB, d))) - dot(wa, c.point3(j, cf::kArmA, d));
   }
-  V3<L> relative_velocity(const V3<L>& ra, const V3<L>& rb) const {
-    return (vb + cross(wb, rb)) - (va + cross(wa, ra));
+  // Applies lambda along direction d at point j (equal and opposite).
+  void apply(const Lanes<L>& c, uint32_t j, uint32_t d, const V3<L>& dir, L lambda) {
+    va = va - dir * (lambda * ma);
+    wa = wa - c.point3(j, cf::kImpA, d) * lambda;
+    vb = vb + dir * (lambda * mb);
+    wb = wb + c.point3(j, cf::kImpB, d) * lambda;
   }
 };
 
@@ -97,7 +90,6 @@ template <class L> inline Pair<L> load_pair(const ContactKernelArgs& a, const La
   p.va = gather3<L>(a.bodies, a.body_a, i, kV), p.wa = gather3<L>(a.bodies, a.body_a, i, kW);
   p.vb = gather3<L>(a.bodies, a.body_b, i, kV), p.wb = gather3<L>(a.bodies, a.body_b, i, kW);
   p.ma = c.field(cf::kMassA), p.mb = c.field(cf::kMassB);
-  p.ia = c.sym(cf::kIa0), p.ib = c.sym(cf::kIb0);
   return p;
 }
 
@@ -109,14 +101,10 @@ template <class L> inline void store_pair(const ContactKernelArgs& a, const Pair
 template <class L> void warm_start(const ContactKernelArgs& a, std::size_t i) {
   const Lanes<L> c{a, i};
   Pair<L> p = load_pair(a, c, i);
-  const V3<L> n = c.field3(cf::kNx), t1 = c.field3(cf::kT1x), t2 = c.field3(cf::kT2x);
-  for (uint32_t j = 0; j < 4; ++j) {
-    const V3<L> ra = c.field3(cf::point_field(j, cf::kRax)), rb = c.field3(cf::point_field(j, cf::kRbx));
-    const V3<L> imp = (n * c.field(cf::point_field(j, cf::kNormalImpulse)) +
-                       t1 * c.field(cf::point_field(j, cf::kTangentImpulse1))) +
-                      t2 * c.field(cf::point_field(j, cf::kTangentImpulse2));
-    p.apply(imp, ra, rb);
-  }
+  const V3<L> dirs[3] = {c.field3(cf::kNx), c.field3(cf::kT1x), c.field3(cf::kT2x)};
+  const uint32_t impulse[3] = {cf::kNormalImpulse, cf::kTangentImpulse1, cf::kTangentImpulse2};
+  for (uint32_t j = 0; j < 4; ++j)
+    for (uint32_t d = 0; d < 3; ++d) p.apply(c, j, d, dirs[d], c.field(cf::point_field(j, impulse[d])));
   store_pair(a, p, i);
 }
 
@@ -126,10 +114,16 @@ template <class L> void solve(const ContactKernelArgs& a, std::size_t i) {
   const V3<L> n = c.field3(cf::kNx), t1 = c.field3(cf::kT1x), t2 = c.field3(cf::kT2x);
   const L zero(0.0f);
 
-  // Separation now, from the bodies' motion since the step began (anchors rotate with them).
-  const V3<L> dpa = gather3<L>(a.bodies, a.body_a, i, kDp), dpb = gather3<L>(a.bodies, a.body_b, i, kDp);
-  const V3<L> ua = gather3<L>(a.bodies, a.body_a, i, kDq), ub = gather3<L>(a.bodies, a.body_b, i, kDq);
-  const L qwa = gather<L>(a.bodies, a.body_a, i, kDq + 3), qwb = gather<L>(a.bodies, a.body_b, i, kDq + 3);
+  // Separation now, from the bodies' motion since the step began, to first order in the
+  // rotation: s = s0 + dot(dpb - dpa, n) + dot(dthb, rb x n) - dot(dtha, ra x n).
+  const bool biased = a.mode != detail::BiasMode::none;
+  V3<L> dth_a{zero, zero, zero}, dth_b{zero, zero, zero};
+  L ds = zero;
+  if (biased) {
+    const V3<L> dpa = gather3<L>(a.bodies, a.body_a, i, kDp), dpb = gather3<L>(a.bodies, a.body_b, i, kDp);
+    dth_a = gather3<L>(a.bodies, a.body_a, i, kDtheta), dth_b = gather3<L>(a.bodies, a.body_b, i, kDtheta);
+    ds = dot(dpb - dpa, n);
+  }
   const auto immovable = p.ma == zero || p.mb == zero;
   const L bias_rate = select(immovable, L(a.soft_static.bias_rate), L(a.soft.bias_rate));
   const L mass_scale_soft = select(immovable, L(a.soft_static.mass_scale), L(a.soft.mass_scale));
@@ -137,10 +131,8 @@ template <class L> void solve(const ContactKernelArgs& a, std::size_t i) {
 
   for (uint32_t step = 0; step < 4; ++step) {
     const uint32_t j = a.reverse ? 3 - step : step;
-    const V3<L> ra = c.field3(cf::point_field(j, cf::kRax)), rb = c.field3(cf::point_field(j, cf::kRbx));
-    const V3<L> d = (dpb - dpa) + (rotate(ub, qwb, rb) - rotate(ua, qwa, ra));
-    const L s = dot(d, n) + c.field(cf::point_field(j, cf::kSeparation));
-    const L speculative = s * L(a.inv_h);
+    L s = c.field(cf::point_field(j, cf::kSeparation));
+    if (biased) s = ((ds + dot(dth_b, c.point3(j, cf::kArmB, 0))) - dot(dth_a, c.point3(j, cf::kArmA, 0))) + s;
     L bias = zero, mass_scale(1.0f), impulse_scale = zero;
     if (a.mode == detail::BiasMode::soft) {
       // No slop here: the soft constraint settles at a penetration of its own (well under a
@@ -151,37 +143,36 @@ template <class L> void solve(const ContactKernelArgs& a, std::size_t i) {
       bias = max(L(a.baumgarte_rate) * min(s + L(a.slop), zero), L(-a.max_push));
     }
     const auto ahead = s > zero;
-    bias = select(ahead, speculative, bias);
+    bias = select(ahead, s * L(a.inv_h), bias);
     mass_scale = select(ahead, L(1.0f), mass_scale);
     impulse_scale = select(ahead, zero, impulse_scale);
 
     const uint32_t fi = cf::point_field(j, cf::kNormalImpulse);
     const L old = c.field(fi);
-    const L vn = dot(p.relative_velocity(ra, rb), n);
+    const L vn = p.along(c, j, 0, n);
     const L impulse = (zero - c.field(cf::point_field(j, cf::kNormalMass)) * mass_scale * (vn + bias)) - impulse_scale * old;
     const L total = max(old + impulse, zero);
     const L applied = total - old;
     c.set(fi, total);
     const uint32_t fm = cf::point_field(j, cf::kMaxNormalImpulse);
     c.set(fm, max(c.field(fm), applied));
-    p.apply(n * applied, ra, rb);
+    p.apply(c, j, 0, n, applied);
   }
 
   const L mu = c.field(cf::kFriction);
   for (uint32_t step = 0; step < 4; ++step) {
     const uint32_t j = a.reverse ? 3 - step : step;
-    const V3<L> ra = c.field3(cf::point_field(j, cf::kRax)), rb = c.field3(cf::point_field(j, cf::kRbx));
     const L limit = mu * c.field(cf::point_field(j, cf::kNormalImpulse));
-    for (uint32_t k = 0; k < 2; ++k) {
-      const V3<L>& t = k == 0 ? t1 : t2;
-      const uint32_t fi = cf::point_field(j, k == 0 ? cf::kTangentImpulse1 : cf::kTangentImpulse2);
-      const uint32_t fmass = cf::point_field(j, k == 0 ? cf::kTangentMass1 : cf::kTangentMass2);
+    for (uint32_t d = 1; d <= 2; ++d) {
+      const V3<L>& t = d == 1 ? t1 : t2;
+      const uint32_t fi = cf::point_field(j, d == 1 ? cf::kTangentImpulse1 : cf::kTangentImpulse2);
+      const uint32_t fmass = cf::point_field(j, d == 1 ? cf::kTangentMass1 : cf::kTangentMass2);
       const L old = c.field(fi);
-      const L vt = dot(p.relative_velocity(ra, rb), t);
+      const L vt = p.along(c, j, d, t);
       const L total = max(min(old - c.field(fmass) * vt, limit), zero - limit);
       const L applied = total - old;
       c.set(fi, total);
-      p.apply(t * applied, ra, rb);
+      p.apply(c, j, d, t, applied);
     }
   }
   store_pair(a, p, i);
@@ -194,18 +185,17 @@ template <class L> void restitution(const ContactKernelArgs& a, std::size_t i) {
   const V3<L> n = c.field3(cf::kNx);
   const L zero(0.0f);
   for (uint32_t j = 0; j < 4; ++j) {
-    const V3<L> ra = c.field3(cf::point_field(j, cf::kRax)), rb = c.field3(cf::point_field(j, cf::kRbx));
     const L rel = c.field(cf::point_field(j, cf::kRelativeVelocity));
     const auto bounce = (rel < L(-a.restitution_threshold)) && (c.field(cf::point_field(j, cf::kMaxNormalImpulse)) > zero) &&
                         (e > zero);
     const uint32_t fi = cf::point_field(j, cf::kNormalImpulse);
     const L old = c.field(fi);
-    const L vn = dot(p.relative_velocity(ra, rb), n);
+    const L vn = p.along(c, j, 0, n);
     const L impulse = zero - c.field(cf::point_field(j, cf::kNormalMass)) * (vn + e * rel);
     const L total = select(bounce, max(old + impulse, zero), old);
     const L applied = total - old;
     c.set(fi, total);
-    p.apply(n * applied, ra, rb);
+    p.apply(c, j, 0, n, applied);
   }
   store_pair(a, p, i);
 }

@@ -174,7 +174,6 @@ struct ParticleSystem::Impl {
   std::vector<Collider> colliders;
   std::size_t live_colliders = 0;
 
-
   uint32_t slot(ParticleId id) const { return pool.slot(detail::Id{id.index, id.generation}); }
   vec3 position(uint32_t i) const { return {px[i], py[i], pz[i]}; }
   vec3 velocity(uint32_t i) const { return {vx[i], vy[i], vz[i]}; }

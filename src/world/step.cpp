@@ -157,7 +157,6 @@ void World::Impl::build_solver_bodies() {
   inv_inertia.resize(6 * std::size_t(m + 1));
   inv_mass.resize(m + 1);
   writable.resize(m + 1);
-  q0.resize(4 * std::size_t(m));
   lin_acc.resize(3 * std::size_t(m));
   ang_acc.resize(3 * std::size_t(m));
   const vec3 g = def.gravity;
@@ -165,7 +164,6 @@ void World::Impl::build_solver_bodies() {
     for (std::size_t b = begin; b < end; ++b) {
       detail::SolverBody& sb = solver_bodies[b];
       sb = detail::SolverBody{};
-      sb.dq[3] = 1.0f;
       float* ii = inv_inertia.data() + 6 * b;
       if (b == m) {
         for (int k = 0; k < 6; ++k) ii[k] = 0.0f;
@@ -179,7 +177,6 @@ void World::Impl::build_solver_bodies() {
       sb.dynamic = dyn ? 1u : 0u;
       writable[b] = dyn ? 1 : 0;
       inv_mass[b] = s.inv_mass[i];
-      q0[4 * b] = s.qx[i], q0[4 * b + 1] = s.qy[i], q0[4 * b + 2] = s.qz[i], q0[4 * b + 3] = s.qw[i];
       // World inverse inertia R diag(d) R^T; the rows of to_mat3(q) are the body axes.
       const mat3 r = to_mat3(s.orientation(i));
       const float d[3] = {s.inv_ix[i], s.inv_iy[i], s.inv_iz[i]};
@@ -268,8 +265,7 @@ void World::Impl::integrate_positions(float h) {
       const quat spin = quat{w.x, w.y, w.z, 0.0f} * q;
       const quat qn = normalized(q + spin * (0.5f * h));
       s.set_orientation(i, qn);
-      const quat d = qn * conjugate(quat{q0[4 * b], q0[4 * b + 1], q0[4 * b + 2], q0[4 * b + 3]});
-      sb.dq[0] = d.x, sb.dq[1] = d.y, sb.dq[2] = d.z, sb.dq[3] = d.w;
+      sb.dtheta[0] += w.x * h, sb.dtheta[1] += w.y * h, sb.dtheta[2] += w.z * h;
     }
   });
 }

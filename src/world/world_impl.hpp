@@ -37,7 +37,6 @@ struct World::Impl {
   std::vector<float> inv_inertia, inv_mass;
   std::vector<uint8_t> writable;
   std::vector<uint32_t> index_of_slot, slot_of_body;
-  std::vector<float> q0;  // orientation at the step start, 4 per solver body
   std::vector<float> lin_acc, ang_acc;  // 3 per solver body: constant over the step
   std::vector<uint8_t> island_awake;
   std::vector<float> island_rest;

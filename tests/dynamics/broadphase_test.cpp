@@ -2,6 +2,7 @@
 // flags, filters, zero-size boxes, exactly touching boxes, a huge ground box), and the
 // contract's invariances (repeat, slot permutation, all static).
 #include "dynamics/broadphase.hpp"
+#include "gyro/runtime.hpp"
 #include "workloads.hpp"
 
 #include <gtest/gtest.h>
@@ -94,6 +95,27 @@ std::vector<std::pair<uint32_t, uint32_t>> brute_force(const Scene& s) {
   return out;
 }
 
+/// The same contract by a plain sweep along x over all boxes (no lists, no cells): an
+/// independent reference for scenes too large for the O(n^2) loop.
+std::vector<std::pair<uint32_t, uint32_t>> plain_sweep(const Scene& s) {
+  std::vector<uint32_t> order(s.size());
+  for (uint32_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) { return s.lo[0][a] < s.lo[0][b] || (s.lo[0][a] == s.lo[0][b] && a < b); });
+  std::vector<std::pair<uint32_t, uint32_t>> out;
+  for (std::size_t x = 0; x < order.size(); ++x) {
+    const uint32_t i = order[x];
+    for (std::size_t y = x + 1; y < order.size() && s.lo[0][order[y]] <= s.hi[0][i]; ++y) {
+      const uint32_t j = order[y];
+      if (!(s.lo[1][i] <= s.hi[1][j] && s.lo[1][j] <= s.hi[1][i] && s.lo[2][i] <= s.hi[2][j] && s.lo[2][j] <= s.hi[2][i])) continue;
+      if (!(s.cat[i] & s.mask[j]) || !(s.cat[j] & s.mask[i])) continue;
+      if (!((s.flags[i] | s.flags[j]) & kBroadDynamic) || !((s.flags[i] | s.flags[j]) & kBroadActive)) continue;
+      out.push_back(s.key[i] < s.key[j] ? std::pair{s.key[i], s.key[j]} : std::pair{s.key[j], s.key[i]});
+    }
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
 std::vector<std::pair<uint32_t, uint32_t>> key_pairs(const Scene& s, const std::vector<BroadPair>& pairs) {
   std::vector<std::pair<uint32_t, uint32_t>> out;
   for (const BroadPair& p : pairs) out.emplace_back(s.key[p.a], s.key[p.b]);
@@ -142,6 +164,25 @@ TEST(Broadphase, MatchesBruteForceOnFlatPileAndTallTower) {
     }
     expect_matches_brute_force(s);
   }
+}
+
+TEST(Broadphase, LargeSceneMatchesPlainSweepAtEveryThreadCount) {
+  // 60k boxes: enough for the sweep to run in parallel chunks of cells.
+  const Scene s = random_scene(60000, 51, 60.0f);
+  const auto want = plain_sweep(s);
+  std::vector<BroadPair> first;
+  for (uint32_t threads : {1u, 2u, 3u}) {
+    ASSERT_EQ(set_thread_count(threads), Status::ok);
+    Broadphase bp;
+    std::vector<BroadPair> pairs;
+    bp.find_pairs(s.input(), pairs);
+    EXPECT_TRUE(key_pairs(s, pairs) == want) << threads << " threads";
+    if (first.empty()) first = pairs;
+    ASSERT_EQ(pairs.size(), first.size());
+    EXPECT_EQ(0, std::memcmp(pairs.data(), first.data(), first.size() * sizeof(BroadPair)));
+  }
+  ASSERT_EQ(set_thread_count(0), Status::ok);
+  EXPECT_GT(want.size(), 30000u);
 }
 
 TEST(Broadphase, ClosedOverlapAndPairRules) {

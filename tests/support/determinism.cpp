@@ -470,7 +470,7 @@ const DetScene kScenes[] = {
     {"scene_models", scene_models, 0xf0754d52193f4864ull},
 #endif
 #if defined(GYRO_HAS_DYNAMICS)
-    {"world_pile", scene_world_pile, 0x1f0873f657c5a90bull},
+    {"world_pile", scene_world_pile, 0x840a0de6671f2af2ull},
 #endif
 };
 
