@@ -208,8 +208,9 @@ class World {
 
   const WorldDef& def() const;
 
-  /// The world's particles (Cookbook chapter 14), stepped after the rigid bodies; a world
-  /// whose particle system is empty skips the stage.
+  /// The world's particles (Cookbook chapter 14), stepped after the rigid bodies; created on
+  /// first use with the world's gravity. A world whose particle system is empty skips the
+  /// stage. Particles collide with the system's own colliders (gyro/particles.hpp).
   ParticleSystem& particles();
 
   struct Impl;

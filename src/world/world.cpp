@@ -348,7 +348,12 @@ std::size_t World::end_events(const ContactEvent** events) const {
 const WorldDef& World::def() const { return impl_->def; }
 
 ParticleSystem& World::particles() {
-  if (!impl_->particles) impl_->particles = std::make_unique<ParticleSystem>();
+  if (!impl_->particles) {
+    impl_->particles = std::make_unique<ParticleSystem>();
+    ParticleSettings settings;
+    settings.gravity = impl_->def.gravity;  // particles fall like the bodies unless told otherwise
+    impl_->particles->set_settings(settings);
+  }
   return *impl_->particles;
 }
 

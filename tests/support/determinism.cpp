@@ -16,6 +16,7 @@
 #endif
 #include "workloads.hpp"
 #if defined(GYRO_HAS_DYNAMICS)
+#include "gyro/particles.hpp"
 #include "gyro/world.hpp"
 #endif
 
@@ -455,6 +456,46 @@ uint64_t scene_world_pile() {
   }
   return h.digest();
 }
+
+// Particles in a world, with every integrator: a fountain against a sphere, a box, a rotated
+// box and a plane, some pinned, some fast enough to cross a collider in one step.
+uint64_t scene_world_particles() {
+  detail::StateHasher h;
+  for (ParticleIntegrator integrator :
+       {ParticleIntegrator::explicit_euler, ParticleIntegrator::semi_implicit_euler, ParticleIntegrator::verlet}) {
+    std::unique_ptr<World> w;
+    if (World::create(WorldDef{}, &w) != Status::ok) return 0;
+    ParticleSystem& ps = w->particles();
+    ParticleSettings settings = ps.settings();
+    settings.integrator = integrator;
+    settings.damping = 0.05f;
+    if (ps.set_settings(settings) != Status::ok) return 0;
+    uint32_t index;
+    if (ps.add_collider(Plane{{0.0f, 1.0f, 0.0f}, 0.0f}, &index) != Status::ok) return 0;
+    if (ps.add_collider(Sphere{{1.0f, 1.0f, 0.0f}, 0.7f}, &index) != Status::ok) return 0;
+    if (ps.add_collider(AABB{{-1.5f, 0.5f, 0.5f}, {0.5f, 0.5f, 0.5f}}, &index) != Status::ok) return 0;
+    if (ps.add_collider(OBB{{0.0f, 2.0f, -1.5f}, {1.0f, 0.02f, 1.0f}, to_mat3(from_axis_angle({1.0f, 0.0f, 0.3f}, 0.4f))},
+                        &index) != Status::ok)
+      return 0;
+    SplitMix64 rng(91);
+    for (int k = 0; k < 300; ++k) {
+      const float r[6] = {float(rng.u()), float(rng.u()), float(rng.u()), float(rng.u()), float(rng.u()), float(rng.u())};
+      ParticleDef d;
+      d.position = {4.0f * r[0] - 2.0f, 3.0f + 2.0f * r[1], 4.0f * r[2] - 2.0f};
+      d.velocity = {10.0f * r[3] - 5.0f, (k % 7 == 0 ? -200.0f : 8.0f * r[4]), 10.0f * r[5] - 5.0f};
+      d.bounce = 0.3f + 0.6f * r[1];
+      d.friction = 0.2f * r[2];
+      d.pinned = k % 37 == 0;
+      ParticleId id;
+      if (ps.create(d, &id) != Status::ok) return 0;
+    }
+    for (int step = 1; step <= 180; ++step) {
+      if (w->step(1.0f / 60.0f) != Status::ok) return 0;
+      if (step % 20 == 0) h.add_u64(w->hash());
+    }
+  }
+  return h.digest();
+}
 #endif
 
 const DetScene kScenes[] = {
@@ -471,6 +512,7 @@ const DetScene kScenes[] = {
 #endif
 #if defined(GYRO_HAS_DYNAMICS)
     {"world_pile", scene_world_pile, 0x840a0de6671f2af2ull},
+    {"world_particles", scene_world_particles, 0x8e3766db8d8855a1ull},
 #endif
 };
 
