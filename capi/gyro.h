@@ -581,11 +581,13 @@ GYRO_API gyro_status gyro_body_destroy(gyro_world* world, gyro_body_id id);
 /** 1 if id names a live body of the world, else 0 (also for a NULL world). */
 GYRO_API uint32_t gyro_body_is_valid(const gyro_world* world, gyro_body_id id);
 
+/** Either out pointer may be NULL (not both). */
 GYRO_API gyro_status gyro_body_get_transform(const gyro_world* world, gyro_body_id id, gyro_vec3* position,
                                              gyro_quat* orientation);
 /** Teleports the body (and wakes it); contacts are recomputed next step. */
 GYRO_API gyro_status gyro_body_set_transform(gyro_world* world, gyro_body_id id, gyro_vec3 position,
                                              gyro_quat orientation);
+/** Either out pointer may be NULL (not both). */
 GYRO_API gyro_status gyro_body_get_velocity(const gyro_world* world, gyro_body_id id, gyro_vec3* linear,
                                             gyro_vec3* angular);
 GYRO_API gyro_status gyro_body_set_velocity(gyro_world* world, gyro_body_id id, gyro_vec3 linear, gyro_vec3 angular);

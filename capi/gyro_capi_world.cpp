@@ -305,12 +305,12 @@ GYRO_API gyro_status gyro_body_get_transform(const gyro_world* world, gyro_body_
                                              gyro_quat* orientation) {
   return guarded([&]() -> Status {
     GYRO_TRY(require_body(world, id));
-    GYRO_TRY(require(position, "position"));
-    GYRO_TRY(require(orientation, "orientation"));
+    if (!position && !orientation) return fail(Status::null_argument, "position and orientation are both null");
     gyro::vec3 p;
     gyro::quat q;
     GYRO_TRY(world->world->get_transform(id_of(id), &p, &q));
-    *position = c_v3(p), *orientation = c_q4(q);
+    if (position) *position = c_v3(p);
+    if (orientation) *orientation = c_q4(q);
     return Status::ok;
   });
 }
@@ -329,11 +329,11 @@ GYRO_API gyro_status gyro_body_get_velocity(const gyro_world* world, gyro_body_i
                                             gyro_vec3* angular) {
   return guarded([&]() -> Status {
     GYRO_TRY(require_body(world, id));
-    GYRO_TRY(require(linear, "linear"));
-    GYRO_TRY(require(angular, "angular"));
+    if (!linear && !angular) return fail(Status::null_argument, "linear and angular are both null");
     gyro::vec3 v, w;
     GYRO_TRY(world->world->get_velocity(id_of(id), &v, &w));
-    *linear = c_v3(v), *angular = c_v3(w);
+    if (linear) *linear = c_v3(v);
+    if (angular) *angular = c_v3(w);
     return Status::ok;
   });
 }

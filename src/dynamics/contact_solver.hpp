@@ -55,8 +55,12 @@ enum PointField : uint32_t {
   kMaxNormalImpulse, kRelativeVelocity,
   kPointFields,
 };
-inline constexpr uint32_t kConstraintFields = kPointBase + 4 * kPointFields;
-inline constexpr uint32_t point_field(uint32_t j, uint32_t f) { return kPointBase + j * kPointFields + f; }
+// (Casts: with gyro's templated vector operators in scope, clang resolves enum * integer
+// against them and fails instead of falling back to the built-in operator.)
+inline constexpr uint32_t kConstraintFields = uint32_t(kPointBase) + 4u * uint32_t(kPointFields);
+inline constexpr uint32_t point_field(uint32_t j, uint32_t f) {
+  return uint32_t(kPointBase) + j * uint32_t(kPointFields) + f;
+}
 
 /// How the velocity iterations push penetrating contacts apart.
 enum class BiasMode : uint32_t {
