@@ -88,7 +88,7 @@ struct BodyDef {
   vec3 angular_velocity;  ///< world frame, rad/s
   float density = 1.0f;   ///< kg/m^3, used when mass is 0
   float mass = 0.0f;      ///< kg; > 0 overrides density (inertia scales with it)
-  float friction = 0.6f;  ///< Coulomb coefficient; a pair uses sqrt(fa * fb)
+  float friction = 0.6f;  ///< Coulomb coefficient; a pair uses sqrt(fa * fb), applied as patch friction
   float restitution = 0.0f;  ///< a pair uses max(ea, eb)
   float linear_damping = 0.0f;   ///< 1/s: v *= 1 / (1 + h * damping) per sub-step
   float angular_damping = 0.0f;  ///< 1/s

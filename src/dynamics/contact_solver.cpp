@@ -103,31 +103,43 @@ uint32_t ContactSolver::prepare(const BodyStore& s, const std::vector<ContactRec
       f[kMassA][k] = ma, f[kMassB][k] = mb;
       const vec3 pa = s.position(rec.slot_a), pb = s.position(rec.slot_b);
       const SolverBody &ba = sb.bodies[a], &bb = sb.bodies[b];
-      const vec3 dirs[3] = {n, t1, t2};
-      for (uint32_t j = 0; j < rec.manifold.count; ++j) {
+      // A row along direction d with lever arms ra, rb: writes arms and inertia images at
+      // `base` and returns its effective mass.
+      auto row = [&](uint32_t base, const vec3& ra, const vec3& rb, const vec3& d) {
+        const vec3 arm_a = cross(ra, d), arm_b = cross(rb, d);
+        const vec3 imp_a = sym_mul(ia, arm_a), imp_b = sym_mul(ib, arm_b);
+        const vec3 v[4] = {arm_a, arm_b, imp_a, imp_b};
+        for (uint32_t q = 0; q < 4; ++q)
+          for (uint32_t c = 0; c < 3; ++c) f[base + 3 * q + c][k] = v[q][int(c)];
+        const float kk = (ma + mb) + (dot(arm_a, imp_a) + dot(arm_b, imp_b));
+        return kk > 0.0f ? 1.0f / kk : 0.0f;
+      };
+      const uint32_t count = rec.manifold.count;
+      vec3 centre{};
+      for (uint32_t j = 0; j < count; ++j) {
         const ContactPoint& cp = rec.manifold.points[j];
         const vec3 ra = cp.position - pa, rb = cp.position - pb;
-        float mass[3];
-        for (uint32_t d = 0; d < 3; ++d) {
-          const vec3 arm_a = cross(ra, dirs[d]), arm_b = cross(rb, dirs[d]);
-          const vec3 imp_a = sym_mul(ia, arm_a), imp_b = sym_mul(ib, arm_b);
-          const vec3 v[4] = {arm_a, arm_b, imp_a, imp_b};
-          for (uint32_t q = 0; q < 4; ++q)
-            for (uint32_t c = 0; c < 3; ++c) f[point_field(j, q * 9 + 3 * d + c)][k] = v[q][int(c)];
-          const float kk = (ma + mb) + (dot(arm_a, imp_a) + dot(arm_b, imp_b));
-          mass[d] = kk > 0.0f ? 1.0f / kk : 0.0f;
-        }
+        centre = centre + cp.position;
+        f[point_field(j, kNormalMass)][k] = row(point_field(j, 0), ra, rb, n);
         f[point_field(j, kSeparation)][k] = cp.separation;
-        f[point_field(j, kNormalMass)][k] = mass[0];
-        f[point_field(j, kTangentMass1)][k] = mass[1];
-        f[point_field(j, kTangentMass2)][k] = mass[2];
-        if (warm) {
-          f[point_field(j, kNormalImpulse)][k] = rec.normal_impulse[j];
-          f[point_field(j, kTangentImpulse1)][k] = rec.tangent_impulse1[j];
-          f[point_field(j, kTangentImpulse2)][k] = rec.tangent_impulse2[j];
-        }
+        if (warm) f[point_field(j, kNormalImpulse)][k] = rec.normal_impulse[j];
         const vec3 dv = (body_v(bb) + cross(body_w(bb), rb)) - (body_v(ba) + cross(body_w(ba), ra));
         f[point_field(j, kRelativeVelocity)][k] = dot(dv, n);
+      }
+      centre = centre / float(count);
+      float radius = 0.0f;
+      for (uint32_t j = 0; j < count; ++j) radius = radius + length(rec.manifold.points[j].position - centre);
+      f[kTwistRadius][k] = radius / float(count);
+      f[kTangentMass1][k] = row(kFrictionBase, centre - pa, centre - pb, t1);
+      f[kTangentMass2][k] = row(kFrictionBase + 12, centre - pa, centre - pb, t2);
+      const vec3 twist_a = sym_mul(ia, n), twist_b = sym_mul(ib, n);
+      for (uint32_t c = 0; c < 3; ++c) f[kTwistImpA + c][k] = twist_a[int(c)], f[kTwistImpB + c][k] = twist_b[int(c)];
+      const float kt = dot(n, twist_a) + dot(n, twist_b);
+      f[kTwistMass][k] = kt > 0.0f ? 1.0f / kt : 0.0f;
+      if (warm) {
+        f[kTangentImpulse1][k] = rec.friction_impulse[0];
+        f[kTangentImpulse2][k] = rec.friction_impulse[1];
+        f[kTwistImpulse][k] = rec.friction_impulse[2];
       }
     }
   });
@@ -224,11 +236,10 @@ void ContactSolver::store_impulses(std::vector<ContactRecord>& records) const {
     const uint32_t r = record_of_slot_[k];
     if (r == kNoRecord) continue;
     ContactRecord& rec = records[r];
-    for (uint32_t j = 0; j < rec.manifold.count; ++j) {
-      rec.normal_impulse[j] = f[point_field(j, kNormalImpulse)][k];
-      rec.tangent_impulse1[j] = f[point_field(j, kTangentImpulse1)][k];
-      rec.tangent_impulse2[j] = f[point_field(j, kTangentImpulse2)][k];
-    }
+    for (uint32_t j = 0; j < rec.manifold.count; ++j) rec.normal_impulse[j] = f[point_field(j, kNormalImpulse)][k];
+    rec.friction_impulse[0] = f[kTangentImpulse1][k];
+    rec.friction_impulse[1] = f[kTangentImpulse2][k];
+    rec.friction_impulse[2] = f[kTwistImpulse][k];
   }
 }
 

@@ -33,28 +33,37 @@ struct alignas(64) SolverBody {
 };
 static_assert(sizeof(SolverBody) == 64);
 
-// Field indices of a constraint (one manifold of up to 4 points).
+// Field indices of a constraint (one manifold of up to 4 points). Non-penetration is solved
+// per point; friction per manifold at the points' centre (patch friction, as PhysX does):
+// two tangent rows and one twist row about the normal, bounded by mu times the manifold's
+// total normal impulse. Three rows instead of eight, and no spurious torque from solving the
+// points' friction one after another. For every row the lever arms (r x d) and their images
+// under the inverse world inertia are precomputed, so a pass needs no matrix and no anchor:
+// an impulse lambda along d changes wa by -(Ia (ra x d)) lambda, and the velocity along d is
+// dot(vb - va, d) + dot(wb, rb x d) - dot(wa, ra x d).
 enum ConstraintField : uint32_t {
   kNx, kNy, kNz, kT1x, kT1y, kT1z, kT2x, kT2y, kT2z,
   kFriction, kRestitution, kMassA, kMassB,
+  kFrictionBase,                    ///< + 12 * tangent (0, 1): armA, armB, impA, impB (3 each)
+  kTwistImpA = kFrictionBase + 24,  ///< Ia n (3)
+  kTwistImpB = kTwistImpA + 3,      ///< Ib n (3)
+  kTangentMass1 = kTwistImpB + 3, kTangentMass2, kTwistMass,
+  kTangentImpulse1, kTangentImpulse2, kTwistImpulse,
+  kTwistRadius,  ///< mean distance of the points from their centre
   kPointBase,
 };
-// Per point j, field kPointBase + j * kPointFields + offset. For each direction d (normal,
-// tangent 1, tangent 2) the point stores the lever arms ra x d, rb x d and their images under
-// the inverse world inertia, so a pass needs no matrix and no anchor: the impulse along d
-// changes wa by -(Ia (ra x d)) lambda and the velocity along d reads dot(wb, rb x d) -
-// dot(wa, ra x d).
+// Per point j, field kPointBase + j * kPointFields + offset.
 enum PointField : uint32_t {
-  kArmA = 0,       ///< + 3 * direction: ra x d (3 floats)
-  kArmB = 9,       ///< rb x d
-  kImpA = 18,      ///< Ia (ra x d)
-  kImpB = 27,      ///< Ib (rb x d)
-  kSeparation = 36,  ///< at the start of the step; moves with dp and dtheta
-  kNormalMass, kTangentMass1, kTangentMass2,
-  kNormalImpulse, kTangentImpulse1, kTangentImpulse2,
-  kMaxNormalImpulse, kRelativeVelocity,
+  kArmA = 0,   ///< ra x n (3 floats)
+  kArmB = 3,   ///< rb x n
+  kImpA = 6,   ///< Ia (ra x n)
+  kImpB = 9,   ///< Ib (rb x n)
+  kSeparation = 12,  ///< at the start of the step; moves with dp and dtheta
+  kNormalMass, kNormalImpulse, kMaxNormalImpulse, kRelativeVelocity,
   kPointFields,
 };
+// Offsets inside a row block (friction rows and points share the layout).
+inline constexpr uint32_t kRowArmA = 0, kRowArmB = 3, kRowImpA = 6, kRowImpB = 9;
 // (Casts: with gyro's templated vector operators in scope, clang resolves enum * integer
 // against them and fails instead of falling back to the built-in operator.)
 inline constexpr uint32_t kConstraintFields = uint32_t(kPointBase) + 4u * uint32_t(kPointFields);

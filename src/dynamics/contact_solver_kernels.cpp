@@ -64,24 +64,27 @@ template <class L> struct Lanes {
   L field(uint32_t f) const { return load<L>(a.f[f] + i); }
   void set(uint32_t f, L v) const { store(a.f[f] + i, v); }
   V3<L> field3(uint32_t f) const { return {field(f), field(f + 1), field(f + 2)}; }
-  // Point j's lever arm / inertia image (base kArmA, kArmB, kImpA or kImpB) along direction d.
-  V3<L> point3(uint32_t j, uint32_t base, uint32_t d) const { return field3(cf::point_field(j, base + 3 * d)); }
 };
 
 template <class L> struct Pair {
   V3<L> va, wa, vb, wb;
   L ma, mb;
 
-  // Velocity of b relative to a at point j along direction d (unit vector dir).
-  L along(const Lanes<L>& c, uint32_t j, uint32_t d, const V3<L>& dir) const {
-    return (dot(vb - va, dir) + dot(wb, c.point3(j, cf::kArmB, d))) - dot(wa, c.point3(j, cf::kArmA, d));
+  // Velocity of b relative to a along the row at field `base` (direction dir).
+  L along(const Lanes<L>& c, uint32_t base, const V3<L>& dir) const {
+    return (dot(vb - va, dir) + dot(wb, c.field3(base + cf::kRowArmB))) - dot(wa, c.field3(base + cf::kRowArmA));
   }
-  // Applies lambda along direction d at point j (equal and opposite).
-  void apply(const Lanes<L>& c, uint32_t j, uint32_t d, const V3<L>& dir, L lambda) {
+  // Applies lambda along that row (equal and opposite).
+  void apply(const Lanes<L>& c, uint32_t base, const V3<L>& dir, L lambda) {
     va = va - dir * (lambda * ma);
-    wa = wa - c.point3(j, cf::kImpA, d) * lambda;
+    wa = wa - c.field3(base + cf::kRowImpA) * lambda;
     vb = vb + dir * (lambda * mb);
-    wb = wb + c.point3(j, cf::kImpB, d) * lambda;
+    wb = wb + c.field3(base + cf::kRowImpB) * lambda;
+  }
+  // Angular-only impulse about the normal (twist friction).
+  void twist(const Lanes<L>& c, L lambda) {
+    wa = wa - c.field3(cf::kTwistImpA) * lambda;
+    wb = wb + c.field3(cf::kTwistImpB) * lambda;
   }
 };
 
@@ -98,20 +101,23 @@ template <class L> inline void store_pair(const ContactKernelArgs& a, const Pair
   scatter_vw(a.bodies, a.body_b, i, p.vb, p.wb);
 }
 
+constexpr uint32_t kT1Row = cf::kFrictionBase, kT2Row = cf::kFrictionBase + 12;
+
 template <class L> void warm_start(const ContactKernelArgs& a, std::size_t i) {
   const Lanes<L> c{a, i};
   Pair<L> p = load_pair(a, c, i);
-  const V3<L> dirs[3] = {c.field3(cf::kNx), c.field3(cf::kT1x), c.field3(cf::kT2x)};
-  const uint32_t impulse[3] = {cf::kNormalImpulse, cf::kTangentImpulse1, cf::kTangentImpulse2};
-  for (uint32_t j = 0; j < 4; ++j)
-    for (uint32_t d = 0; d < 3; ++d) p.apply(c, j, d, dirs[d], c.field(cf::point_field(j, impulse[d])));
+  const V3<L> n = c.field3(cf::kNx);
+  for (uint32_t j = 0; j < 4; ++j) p.apply(c, cf::point_field(j, 0), n, c.field(cf::point_field(j, cf::kNormalImpulse)));
+  p.apply(c, kT1Row, c.field3(cf::kT1x), c.field(cf::kTangentImpulse1));
+  p.apply(c, kT2Row, c.field3(cf::kT2x), c.field(cf::kTangentImpulse2));
+  p.twist(c, c.field(cf::kTwistImpulse));
   store_pair(a, p, i);
 }
 
 template <class L> void solve(const ContactKernelArgs& a, std::size_t i) {
   const Lanes<L> c{a, i};
   Pair<L> p = load_pair(a, c, i);
-  const V3<L> n = c.field3(cf::kNx), t1 = c.field3(cf::kT1x), t2 = c.field3(cf::kT2x);
+  const V3<L> n = c.field3(cf::kNx);
   const L zero(0.0f);
 
   // Separation now, from the bodies' motion since the step began, to first order in the
@@ -129,10 +135,12 @@ template <class L> void solve(const ContactKernelArgs& a, std::size_t i) {
   const L mass_scale_soft = select(immovable, L(a.soft_static.mass_scale), L(a.soft.mass_scale));
   const L impulse_scale_soft = select(immovable, L(a.soft_static.impulse_scale), L(a.soft.impulse_scale));
 
+  L total_normal = zero;
   for (uint32_t step = 0; step < 4; ++step) {
     const uint32_t j = a.reverse ? 3 - step : step;
-    L s = c.field(cf::point_field(j, cf::kSeparation));
-    if (biased) s = ((ds + dot(dth_b, c.point3(j, cf::kArmB, 0))) - dot(dth_a, c.point3(j, cf::kArmA, 0))) + s;
+    const uint32_t row = cf::point_field(j, 0);
+    L s = c.field(row + cf::kSeparation);
+    if (biased) s = ((ds + dot(dth_b, c.field3(row + cf::kArmB))) - dot(dth_a, c.field3(row + cf::kArmA))) + s;
     L bias = zero, mass_scale(1.0f), impulse_scale = zero;
     if (a.mode == detail::BiasMode::soft) {
       // No slop here: the soft constraint settles at a penetration of its own (well under a
@@ -147,34 +155,40 @@ template <class L> void solve(const ContactKernelArgs& a, std::size_t i) {
     mass_scale = select(ahead, L(1.0f), mass_scale);
     impulse_scale = select(ahead, zero, impulse_scale);
 
-    const uint32_t fi = cf::point_field(j, cf::kNormalImpulse);
+    const uint32_t fi = row + cf::kNormalImpulse;
     const L old = c.field(fi);
-    const L vn = p.along(c, j, 0, n);
-    const L impulse = (zero - c.field(cf::point_field(j, cf::kNormalMass)) * mass_scale * (vn + bias)) - impulse_scale * old;
+    const L vn = p.along(c, row, n);
+    const L impulse = (zero - c.field(row + cf::kNormalMass) * mass_scale * (vn + bias)) - impulse_scale * old;
     const L total = max(old + impulse, zero);
     const L applied = total - old;
     c.set(fi, total);
-    const uint32_t fm = cf::point_field(j, cf::kMaxNormalImpulse);
+    const uint32_t fm = row + cf::kMaxNormalImpulse;
     c.set(fm, max(c.field(fm), applied));
-    p.apply(c, j, 0, n, applied);
+    p.apply(c, row, n, applied);
   }
+  for (uint32_t j = 0; j < 4; ++j) total_normal = total_normal + c.field(cf::point_field(j, cf::kNormalImpulse));
 
-  const L mu = c.field(cf::kFriction);
-  for (uint32_t step = 0; step < 4; ++step) {
-    const uint32_t j = a.reverse ? 3 - step : step;
-    const L limit = mu * c.field(cf::point_field(j, cf::kNormalImpulse));
-    for (uint32_t d = 1; d <= 2; ++d) {
-      const V3<L>& t = d == 1 ? t1 : t2;
-      const uint32_t fi = cf::point_field(j, d == 1 ? cf::kTangentImpulse1 : cf::kTangentImpulse2);
-      const uint32_t fmass = cf::point_field(j, d == 1 ? cf::kTangentMass1 : cf::kTangentMass2);
-      const L old = c.field(fi);
-      const L vt = p.along(c, j, d, t);
-      const L total = max(min(old - c.field(fmass) * vt, limit), zero - limit);
-      const L applied = total - old;
-      c.set(fi, total);
-      p.apply(c, j, d, t, applied);
-    }
-  }
+  // Patch friction: the tangent impulse stays inside the circle of radius mu * total normal
+  // impulse; the twist inside mu * radius * total.
+  const L limit = c.field(cf::kFriction) * total_normal;
+  const V3<L> t1 = c.field3(cf::kT1x), t2 = c.field3(cf::kT2x);
+  const L old1 = c.field(cf::kTangentImpulse1), old2 = c.field(cf::kTangentImpulse2);
+  L new1 = old1 - c.field(cf::kTangentMass1) * p.along(c, kT1Row, t1);
+  L new2 = old2 - c.field(cf::kTangentMass2) * p.along(c, kT2Row, t2);
+  const L len_sq = new1 * new1 + new2 * new2;
+  const auto over = len_sq > limit * limit;
+  const L scale = select(over, limit / sqrt(select(over, len_sq, L(1.0f))), L(1.0f));
+  new1 = new1 * scale, new2 = new2 * scale;
+  c.set(cf::kTangentImpulse1, new1), c.set(cf::kTangentImpulse2, new2);
+  p.apply(c, kT1Row, t1, new1 - old1);
+  p.apply(c, kT2Row, t2, new2 - old2);
+
+  const L twist_limit = limit * c.field(cf::kTwistRadius);
+  const L old_t = c.field(cf::kTwistImpulse);
+  const L spin = dot(p.wb - p.wa, n);
+  const L new_t = max(min(old_t - c.field(cf::kTwistMass) * spin, twist_limit), zero - twist_limit);
+  c.set(cf::kTwistImpulse, new_t);
+  p.twist(c, new_t - old_t);
   store_pair(a, p, i);
 }
 
@@ -185,17 +199,17 @@ template <class L> void restitution(const ContactKernelArgs& a, std::size_t i) {
   const V3<L> n = c.field3(cf::kNx);
   const L zero(0.0f);
   for (uint32_t j = 0; j < 4; ++j) {
-    const L rel = c.field(cf::point_field(j, cf::kRelativeVelocity));
-    const auto bounce = (rel < L(-a.restitution_threshold)) && (c.field(cf::point_field(j, cf::kMaxNormalImpulse)) > zero) &&
-                        (e > zero);
-    const uint32_t fi = cf::point_field(j, cf::kNormalImpulse);
+    const uint32_t row = cf::point_field(j, 0);
+    const L rel = c.field(row + cf::kRelativeVelocity);
+    const auto bounce = (rel < L(-a.restitution_threshold)) && (c.field(row + cf::kMaxNormalImpulse) > zero) && (e > zero);
+    const uint32_t fi = row + cf::kNormalImpulse;
     const L old = c.field(fi);
-    const L vn = p.along(c, j, 0, n);
-    const L impulse = zero - c.field(cf::point_field(j, cf::kNormalMass)) * (vn + e * rel);
+    const L vn = p.along(c, row, n);
+    const L impulse = zero - c.field(row + cf::kNormalMass) * (vn + e * rel);
     const L total = select(bounce, max(old + impulse, zero), old);
     const L applied = total - old;
     c.set(fi, total);
-    p.apply(c, j, 0, n, applied);
+    p.apply(c, row, n, applied);
   }
   store_pair(a, p, i);
 }

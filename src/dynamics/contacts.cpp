@@ -90,12 +90,10 @@ void warm_from(const ContactRecord& old, ContactRecord& r) {
     for (uint32_t k = 0; k < old.manifold.count; ++k) {
       if (old.manifold.points[k].feature_id != r.manifold.points[j].feature_id) continue;
       r.normal_impulse[j] = old.normal_impulse[k];
-      r.tangent_impulse1[j] = old.tangent_impulse1[k];
-      r.tangent_impulse2[j] = old.tangent_impulse2[k];
       break;
     }
   }
-  r.tangent1 = old.tangent1;
+  for (int d = 0; d < 3; ++d) r.friction_impulse[d] = old.friction_impulse[d];
 }
 
 bool before(const ContactRecord& x, const ContactRecord& y) {
@@ -167,8 +165,8 @@ void ContactSet::update(const BodyStore& s, const std::vector<CandidatePair>& pa
         r.friction = std::sqrt(s.friction[a] * s.friction[b]);
         r.restitution = s.restitution[a] > s.restitution[b] ? s.restitution[a] : s.restitution[b];
         for (uint32_t j = 0; j < kMaxManifoldPoints; ++j)
-          r.normal_impulse[j] = r.tangent_impulse1[j] = r.tangent_impulse2[j] = 0.0f;
-        r.tangent1 = vec3{};
+          r.normal_impulse[j] = 0.0f;
+        r.friction_impulse[0] = r.friction_impulse[1] = r.friction_impulse[2] = 0.0f;
       }
       pair_count_[i] = n;
     }
@@ -235,8 +233,9 @@ void ContactSet::hash_into(StateHasher& h) const {
       const ContactPoint& p = r.manifold.points[j];
       h.add_u32(p.feature_id);
       h.add_float(p.separation);
-      h.add_float(r.normal_impulse[j]), h.add_float(r.tangent_impulse1[j]), h.add_float(r.tangent_impulse2[j]);
+      h.add_float(r.normal_impulse[j]);
     }
+    for (float f : r.friction_impulse) h.add_float(f);
   }
 }
 

@@ -26,9 +26,9 @@ struct ContactRecord {
   float friction = 0.0f, restitution = 0.0f;
   Manifold manifold;  ///< normal from a to b
   float normal_impulse[kMaxManifoldPoints] = {};
-  float tangent_impulse1[kMaxManifoldPoints] = {};
-  float tangent_impulse2[kMaxManifoldPoints] = {};
-  vec3 tangent1;  ///< friction directions of the last solve (impulses are along them)
+  /// Patch friction of the manifold (at the points' centre): along tangent 1, tangent 2 and
+  /// about the normal (the tangents are a function of the normal, so they carry over).
+  float friction_impulse[3] = {};
 
   uint32_t index_a() const { return uint32_t(key >> 32); }
   uint32_t index_b() const { return uint32_t(key); }
