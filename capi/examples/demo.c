@@ -293,7 +293,7 @@ static int pyramid_demo(void) {
   int same = 1;
   gyro_step_timings tm;
   gyro_step_stats st;
-  printf("\nrigid bodies: a pyramid of %d boxes hit by a ball, %d steps at 60 Hz (soft step, 8 sub-steps x 4 "
+  printf("\nrigid bodies: a pyramid of %d boxes hit by a ball, %d steps at 60 Hz (soft step, 8 sub-steps x 2 "
          "iterations)\n", PYR_BASE * (PYR_BASE + 1) / 2, PYR_STEPS);
   printf("  %-8s %7s %10s  %s\n", "simd", "threads", "ms/step", "world hash");
   for (level = GYRO_SIMD_SCALAR; level <= GYRO_SIMD_NEON; ++level) {

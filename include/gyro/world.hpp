@@ -111,7 +111,7 @@ struct WorldDef {
   vec3 gravity{0.0f, -9.81f, 0.0f};
   ContactModel contact_model = ContactModel::soft_step;
   uint32_t substeps = 8;             ///< soft step only; the other models run 1
-  uint32_t velocity_iterations = 4;  ///< per sub-step (soft step) or per step (others: try 10)
+  uint32_t velocity_iterations = 2;  ///< per sub-step (soft step) or per step (others: try 10)
   uint32_t relax_iterations = 1;     ///< soft step: iterations without bias after each sub-step
   uint32_t position_iterations = 1;  ///< linear projection passes
   float linear_slop = 0.005f;        ///< m of penetration left uncorrected (keeps contacts alive)

@@ -511,7 +511,7 @@ const DetScene kScenes[] = {
     {"scene_models", scene_models, 0xf0754d52193f4864ull},
 #endif
 #if defined(GYRO_HAS_DYNAMICS)
-    {"world_pile", scene_world_pile, 0xab6b947c51b4bc51ull},
+    {"world_pile", scene_world_pile, 0x754cdfcd63378e65ull},
     {"world_particles", scene_world_particles, 0x8e3766db8d8855a1ull},
 #endif
 };
