@@ -35,6 +35,9 @@ struct quat {
 
 static_assert(sizeof(quat) == 16 && std::is_standard_layout_v<quat> && std::is_trivially_copyable_v<quat>);
 
+/// No component is NaN or infinite.
+inline bool is_finite(const quat& q) { return is_finite(vec4{q.x, q.y, q.z, q.w}); }
+
 /// Hamilton's product a * b: the rotation b followed by the rotation a.
 constexpr quat operator*(const quat& a, const quat& b) {
   return {a.w * b.x + a.x * b.w + a.y * b.z - a.z * b.y, a.w * b.y - a.x * b.z + a.y * b.w + a.z * b.x,

@@ -17,6 +17,7 @@
 #include "gyro/math_mat.hpp"
 #include "gyro/math_vec.hpp"
 
+#include <cmath>
 #include <cstdint>
 
 namespace gyro {
@@ -60,6 +61,15 @@ struct OBB {
   vec3 half_extents{1.0f, 1.0f, 1.0f};
   mat3 orientation;
 };
+
+/// Half extents of the AABB around a box with these half extents and a rotation whose rows
+/// are its axes (as OBB::orientation): sum over k of |row k| * half[k].
+inline vec3 aabb_half_extents(const mat3& rows, const vec3& half) {
+  vec3 out;
+  for (int c = 0; c < 3; ++c)
+    out[c] = (std::abs(rows.m[0][c]) * half.x + std::abs(rows.m[1][c]) * half.y) + std::abs(rows.m[2][c]) * half.z;
+  return out;
+}
 
 /// The points p with dot(normal, p) = distance.
 struct Plane {

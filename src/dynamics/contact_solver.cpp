@@ -85,10 +85,14 @@ uint32_t ContactSolver::prepare(const BodyStore& s, const std::vector<ContactRec
   parallel_for(slots, 1024, [&](std::size_t begin, std::size_t end) {
     for (std::size_t k = begin; k < end; ++k) {
       float* const* f = field_ptrs_.data();
-      for (uint32_t x = 0; x < kConstraintFields; ++x) f[x][k] = 0.0f;
       const uint32_t r = record_of_slot_[k];
-      if (r == kNoRecord) continue;
+      if (r == kNoRecord) {  // padding: an inert constraint (zero masses and impulses)
+        for (uint32_t x = 0; x < kConstraintFields; ++x) f[x][k] = 0.0f;
+        continue;
+      }
       const ContactRecord& rec = records[r];
+      // Every field of a used slot is written below, except the points past the count.
+      for (uint32_t x = point_field(rec.manifold.count, 0); x < kConstraintFields; ++x) f[x][k] = 0.0f;
       const uint32_t a = body_a_[k], b = body_b_[k];
       const float ma = sb.inv_mass[a], mb = sb.inv_mass[b];
       const float* ia = sb.inv_inertia + 6 * std::size_t(a);
@@ -122,7 +126,8 @@ uint32_t ContactSolver::prepare(const BodyStore& s, const std::vector<ContactRec
         centre = centre + cp.position;
         f[point_field(j, kNormalMass)][k] = row(point_field(j, 0), ra, rb, n);
         f[point_field(j, kSeparation)][k] = cp.separation;
-        if (warm) f[point_field(j, kNormalImpulse)][k] = rec.normal_impulse[j];
+        f[point_field(j, kNormalImpulse)][k] = warm ? rec.normal_impulse[j] : 0.0f;
+        f[point_field(j, kMaxNormalImpulse)][k] = 0.0f;
         const vec3 dv = (body_v(bb) + cross(body_w(bb), rb)) - (body_v(ba) + cross(body_w(ba), ra));
         f[point_field(j, kRelativeVelocity)][k] = dot(dv, n);
       }
@@ -136,11 +141,9 @@ uint32_t ContactSolver::prepare(const BodyStore& s, const std::vector<ContactRec
       for (uint32_t c = 0; c < 3; ++c) f[kTwistImpA + c][k] = twist_a[int(c)], f[kTwistImpB + c][k] = twist_b[int(c)];
       const float kt = dot(n, twist_a) + dot(n, twist_b);
       f[kTwistMass][k] = kt > 0.0f ? 1.0f / kt : 0.0f;
-      if (warm) {
-        f[kTangentImpulse1][k] = rec.friction_impulse[0];
-        f[kTangentImpulse2][k] = rec.friction_impulse[1];
-        f[kTwistImpulse][k] = rec.friction_impulse[2];
-      }
+      f[kTangentImpulse1][k] = warm ? rec.friction_impulse[0] : 0.0f;
+      f[kTangentImpulse2][k] = warm ? rec.friction_impulse[1] : 0.0f;
+      f[kTwistImpulse][k] = warm ? rec.friction_impulse[2] : 0.0f;
     }
   });
   return plan_.colors();

@@ -48,16 +48,9 @@ uint32_t collide_mesh(const BodyStore& s, uint32_t body, uint32_t mesh, float ma
   const quat q_local = qm_inv * s.orientation(body);
   const bool sphere = s.shape[body] == uint32_t(BodyShape::sphere);
   const OBB box{p_local, {s.hx[body], s.hy[body], s.hz[body]}, to_mat3(q_local)};
-  vec3 reach;
-  if (sphere) {
-    reach = vec3{s.radius[body], s.radius[body], s.radius[body]};
-  } else {
-    const mat3& r = box.orientation;  // rows are the box axes
-    for (int k = 0; k < 3; ++k)
-      reach[k] = (std::abs(r.m[0][k]) * box.half_extents.x + std::abs(r.m[1][k]) * box.half_extents.y) +
-                 std::abs(r.m[2][k]) * box.half_extents.z;
-  }
-  reach = reach + vec3{margin, margin, margin};
+  const vec3 reach0 = sphere ? vec3{s.radius[body], s.radius[body], s.radius[body]}
+                             : aabb_half_extents(box.orientation, box.half_extents);
+  const vec3 reach = reach0 + vec3{margin, margin, margin};
   uint32_t tris[kMaxMeshManifolds];
   const std::size_t found = s.mesh[mesh]->triangles_overlapping(AABB{p_local, reach}, tris, kMaxMeshManifolds);
   const uint32_t n = uint32_t(std::min<std::size_t>(found, cap));

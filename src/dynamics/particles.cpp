@@ -44,7 +44,6 @@ struct Collider {
   Plane plane;
 };
 
-bool finite3(const vec3& v) { return is_finite(v.x) && is_finite(v.y) && is_finite(v.z); }
 float max_abs3(const vec3& v) {
   const float x = std::abs(v.x), y = std::abs(v.y), z = std::abs(v.z);
   const float m = x > y ? x : y;
@@ -221,7 +220,7 @@ ParticleSystem& ParticleSystem::operator=(const ParticleSystem& other) {
 }
 
 Status ParticleSystem::set_settings(const ParticleSettings& s) {
-  if (!finite3(s.gravity)) return fail(Status::non_finite, "particle gravity is not finite");
+  if (!gyro::is_finite(s.gravity)) return fail(Status::non_finite, "particle gravity is not finite");
   if (!is_finite(s.damping)) return fail(Status::non_finite, "particle damping is not finite");
   if (s.damping < 0.0f) return fail(Status::invalid_argument, "particle damping %g is negative", double(s.damping));
   if (static_cast<uint32_t>(s.integrator) > static_cast<uint32_t>(ParticleIntegrator::verlet))
@@ -240,8 +239,8 @@ const ParticleSettings& ParticleSystem::settings() const { return impl_->setting
 
 Status ParticleSystem::create(const ParticleDef& def, ParticleId* out) {
   GYRO_TRY(detail::require_not_null(out, "out"));
-  if (!finite3(def.position)) return fail(Status::non_finite, "particle position is not finite");
-  if (!finite3(def.velocity)) return fail(Status::non_finite, "particle velocity is not finite");
+  if (!gyro::is_finite(def.position)) return fail(Status::non_finite, "particle position is not finite");
+  if (!gyro::is_finite(def.velocity)) return fail(Status::non_finite, "particle velocity is not finite");
   if (!def.pinned) {
     if (!is_finite(def.mass)) return fail(Status::non_finite, "particle mass is not finite");
     if (!(def.mass > 0.0f)) return fail(Status::invalid_argument, "particle mass %g is not > 0 (pin it instead)", double(def.mass));
@@ -302,7 +301,7 @@ Status ParticleSystem::get_velocity(ParticleId id, vec3* velocity) const {
 Status ParticleSystem::set_position(ParticleId id, const vec3& position) {
   uint32_t i;
   GYRO_TRY(impl_->find(id, &i));
-  if (!finite3(position)) return fail(Status::non_finite, "particle position is not finite");
+  if (!gyro::is_finite(position)) return fail(Status::non_finite, "particle position is not finite");
   Impl& m = *impl_;
   m.px[i] = position.x, m.py[i] = position.y, m.pz[i] = position.z;
   m.reseed[i] = 1;
@@ -312,7 +311,7 @@ Status ParticleSystem::set_position(ParticleId id, const vec3& position) {
 Status ParticleSystem::set_velocity(ParticleId id, const vec3& velocity) {
   uint32_t i;
   GYRO_TRY(impl_->find(id, &i));
-  if (!finite3(velocity)) return fail(Status::non_finite, "particle velocity is not finite");
+  if (!gyro::is_finite(velocity)) return fail(Status::non_finite, "particle velocity is not finite");
   Impl& m = *impl_;
   m.vx[i] = velocity.x, m.vy[i] = velocity.y, m.vz[i] = velocity.z;
   m.reseed[i] = 1;
@@ -322,7 +321,7 @@ Status ParticleSystem::set_velocity(ParticleId id, const vec3& velocity) {
 Status ParticleSystem::add_force(ParticleId id, const vec3& force) {
   uint32_t i;
   GYRO_TRY(impl_->find(id, &i));
-  if (!finite3(force)) return fail(Status::non_finite, "particle force is not finite");
+  if (!gyro::is_finite(force)) return fail(Status::non_finite, "particle force is not finite");
   Impl& m = *impl_;
   m.fx[i] = m.fx[i] + force.x, m.fy[i] = m.fy[i] + force.y, m.fz[i] = m.fz[i] + force.z;
   return Status::ok;
@@ -331,7 +330,7 @@ Status ParticleSystem::add_force(ParticleId id, const vec3& force) {
 // ---------------------------------------------------------------- colliders
 
 Status ParticleSystem::add_collider(const Sphere& sphere, uint32_t* index) {
-  if (!finite3(sphere.center) || !is_finite(sphere.radius)) return fail(Status::non_finite, "sphere collider is not finite");
+  if (!gyro::is_finite(sphere.center) || !is_finite(sphere.radius)) return fail(Status::non_finite, "sphere collider is not finite");
   if (sphere.radius < 0.0f) return fail(Status::invalid_argument, "sphere collider radius %g is negative", double(sphere.radius));
   Collider c;
   c.kind = ColliderKind::sphere, c.sphere = sphere;
@@ -339,7 +338,7 @@ Status ParticleSystem::add_collider(const Sphere& sphere, uint32_t* index) {
 }
 
 Status ParticleSystem::add_collider(const AABB& box, uint32_t* index) {
-  if (!finite3(box.center) || !finite3(box.half_extents)) return fail(Status::non_finite, "AABB collider is not finite");
+  if (!gyro::is_finite(box.center) || !gyro::is_finite(box.half_extents)) return fail(Status::non_finite, "AABB collider is not finite");
   if (box.half_extents.x < 0.0f || box.half_extents.y < 0.0f || box.half_extents.z < 0.0f)
     return fail(Status::invalid_argument, "AABB collider has a negative half extent");
   Collider c;
@@ -348,7 +347,7 @@ Status ParticleSystem::add_collider(const AABB& box, uint32_t* index) {
 }
 
 Status ParticleSystem::add_collider(const OBB& box, uint32_t* index) {
-  bool finite = finite3(box.center) && finite3(box.half_extents);
+  bool finite = gyro::is_finite(box.center) && gyro::is_finite(box.half_extents);
   for (int r = 0; r < 3; ++r)
     for (int k = 0; k < 3; ++k) finite = finite && is_finite(box.orientation[r][k]);
   if (!finite) return fail(Status::non_finite, "OBB collider is not finite");
@@ -369,7 +368,7 @@ Status ParticleSystem::add_collider(const OBB& box, uint32_t* index) {
 }
 
 Status ParticleSystem::add_collider(const Plane& plane, uint32_t* index) {
-  if (!finite3(plane.normal) || !is_finite(plane.distance)) return fail(Status::non_finite, "plane collider is not finite");
+  if (!gyro::is_finite(plane.normal) || !is_finite(plane.distance)) return fail(Status::non_finite, "plane collider is not finite");
   const float len = length(plane.normal);
   if (!(len > 0.0f) || !is_finite(len)) return fail(Status::invalid_argument, "plane collider normal is zero or too large");
   Collider c;

@@ -15,7 +15,6 @@ namespace {
 
 using detail::fail;
 
-bool finite3(const vec3& v) { return detail::is_finite(v.x) && detail::is_finite(v.y) && detail::is_finite(v.z); }
 
 vec3 row3(const mat3& m, int r) { return {m.m[r][0], m.m[r][1], m.m[r][2]}; }
 
@@ -35,7 +34,7 @@ bool nearly_parallel(const vec3& a, const vec3& b) {
 }
 
 Status check_orbit(const OrbitCamera& o) {
-  if (!finite3(o.target) || !detail::is_finite(o.distance) || !detail::is_finite(o.yaw) || !detail::is_finite(o.pitch))
+  if (!gyro::is_finite(o.target) || !detail::is_finite(o.distance) || !detail::is_finite(o.yaw) || !detail::is_finite(o.pitch))
     return fail(Status::non_finite, "orbit: target, distance, yaw and pitch must be finite");
   if (!(o.max_pitch >= 0.0f && o.max_pitch < kHalfPi))
     return fail(Status::invalid_argument, "orbit.max_pitch = %g: must be in [0, pi/2)", double(o.max_pitch));
@@ -73,9 +72,9 @@ Camera orthographic_camera(float width, float height, float z_near, float z_far)
 }
 
 Status check_camera(const Camera& c) {
-  if (!finite3(c.position)) return fail(Status::non_finite, "camera.position is not finite");
+  if (!gyro::is_finite(c.position)) return fail(Status::non_finite, "camera.position is not finite");
   for (int r = 0; r < 3; ++r)
-    if (!finite3(row3(c.orientation, r))) return fail(Status::non_finite, "camera.orientation row %d is not finite", r);
+    if (!gyro::is_finite(row3(c.orientation, r))) return fail(Status::non_finite, "camera.orientation row %d is not finite", r);
   if (row3(c.orientation, 2) == vec3{}) return fail(Status::invalid_argument, "camera.orientation: the forward axis is zero");
   if (!detail::is_finite(c.z_near) || !detail::is_finite(c.z_far))
     return fail(Status::non_finite, "camera z_near = %g, z_far = %g: must be finite", double(c.z_near), double(c.z_far));

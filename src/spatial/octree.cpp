@@ -38,14 +38,13 @@ Status check_def(const OctreeDef& def) {
   return Status::ok;
 }
 
-bool finite3(const vec3& v) { return detail::is_finite(v.x) && detail::is_finite(v.y) && detail::is_finite(v.z); }
 
 Status check_box(const AABB& b, const char* what, std::size_t i) {
-  if (!finite3(b.center) || !finite3(b.half_extents)) return fail(Status::non_finite, "%s[%zu] is not finite", what, i);
+  if (!gyro::is_finite(b.center) || !gyro::is_finite(b.half_extents)) return fail(Status::non_finite, "%s[%zu] is not finite", what, i);
   if (!(b.half_extents.x >= 0.0f && b.half_extents.y >= 0.0f && b.half_extents.z >= 0.0f))
     return fail(Status::invalid_argument, "%s[%zu] has a negative half extent", what, i);
   const vec3 lo = aabb_min(b), hi = aabb_max(b);
-  if (!finite3(lo) || !finite3(hi)) return fail(Status::non_finite, "%s[%zu]'s corners overflow float", what, i);
+  if (!gyro::is_finite(lo) || !gyro::is_finite(hi)) return fail(Status::non_finite, "%s[%zu]'s corners overflow float", what, i);
   return Status::ok;
 }
 
@@ -162,7 +161,7 @@ bool frustum_may_touch(const Frustum& f, const float lo[3], const float hi[3]) {
 Status check_frustum(const Frustum& f, const char* what) {
   for (int k = 0; k < 6; ++k) {
     const Plane& p = f.planes[k];
-    if (!finite3(p.normal) || !is_finite(p.distance)) return fail(Status::non_finite, "%s plane %d is not finite", what, k);
+    if (!gyro::is_finite(p.normal) || !is_finite(p.distance)) return fail(Status::non_finite, "%s plane %d is not finite", what, k);
   }
   return Status::ok;
 }
@@ -265,7 +264,7 @@ Status Octree::query(const AABB& region, std::vector<uint32_t>& out) const {
 
 Status Octree::query(const Sphere& sphere, std::vector<uint32_t>& out) const {
   out.clear();
-  if (!finite3(sphere.center) || !detail::is_finite(sphere.radius)) return fail(Status::non_finite, "sphere is not finite");
+  if (!gyro::is_finite(sphere.center) || !detail::is_finite(sphere.radius)) return fail(Status::non_finite, "sphere is not finite");
   if (!(sphere.radius >= 0.0f)) return fail(Status::invalid_argument, "sphere radius %g is negative", double(sphere.radius));
   collect([&](const float lo[3], const float hi[3]) { return sphere_may_touch(sphere, lo, hi); },
           [&](const AABB& b) { return overlaps(sphere, b); }, out);

@@ -50,7 +50,6 @@ constexpr uint32_t kNoIndex = 0xFFFFFFFFu;
 // Entries on a traversal stack: a node pushes at most 7 siblings per level.
 constexpr std::size_t kStackSize = 8 * (detail::kBvhMaxDepth + 2);
 
-bool finite3(const vec3& v) { return detail::is_finite(v.x) && detail::is_finite(v.y) && detail::is_finite(v.z); }
 float max_abs3(const vec3& v) { return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)}); }
 
 // v * R^T: the coordinates of v along R's rows.
@@ -60,13 +59,6 @@ vec3 along_rows(const vec3& v, const mat3& r) {
 }
 
 // Half extents of the world AABB of a box with these rows and half extents.
-vec3 aabb_half_of(const mat3& rows, const vec3& half) {
-  const float e[3] = {half.x, half.y, half.z};
-  vec3 out{0.0f, 0.0f, 0.0f};
-  for (int k = 0; k < 3; ++k)
-    out = out + vec3{std::abs(rows.m[k][0]), std::abs(rows.m[k][1]), std::abs(rows.m[k][2])} * e[k];
-  return out;
-}
 
 // [c - h, c + h] padded by kBoxPad of its magnitude (see the header comment).
 AABB padded_bounds(const vec3& c, const vec3& h) {
@@ -76,7 +68,7 @@ AABB padded_bounds(const vec3& c, const vec3& h) {
 }
 
 Status check_transform(const ModelTransform& t, const char* what) {
-  if (!finite3(t.position)) return fail(Status::non_finite, "%s.position is not finite", what);
+  if (!gyro::is_finite(t.position)) return fail(Status::non_finite, "%s.position is not finite", what);
   const quat& q = t.rotation;
   if (!detail::is_finite(q.x) || !detail::is_finite(q.y) || !detail::is_finite(q.z) || !detail::is_finite(q.w))
     return fail(Status::non_finite, "%s.rotation is not finite", what);
@@ -96,12 +88,12 @@ Status check_shape(const ModelDef& d) {
       if (!(d.radius >= 0.0f)) return fail(Status::invalid_argument, "ModelDef.radius = %g is negative", double(d.radius));
       return Status::ok;
     case ModelShape::box:
-      if (!finite3(d.half_extents)) return fail(Status::non_finite, "ModelDef.half_extents is not finite");
+      if (!gyro::is_finite(d.half_extents)) return fail(Status::non_finite, "ModelDef.half_extents is not finite");
       if (!(d.half_extents.x >= 0.0f && d.half_extents.y >= 0.0f && d.half_extents.z >= 0.0f))
         return fail(Status::invalid_argument, "ModelDef.half_extents has a negative component");
       return Status::ok;
     case ModelShape::plane: {
-      if (!finite3(d.plane.normal) || !detail::is_finite(d.plane.distance))
+      if (!gyro::is_finite(d.plane.normal) || !detail::is_finite(d.plane.distance))
         return fail(Status::non_finite, "ModelDef.plane is not finite");
       const float n2 = dot(d.plane.normal, d.plane.normal);
       if (!(std::abs(n2 - 1.0f) <= 2e-3f))
@@ -146,20 +138,20 @@ Placed place(const ModelDef& d, const ModelTransform& w, uint32_t index) {
       break;
     case ModelShape::box:
       p.box = {w.position, d.half_extents * w.scale, p.rot};
-      half = aabb_half_of(p.rot, p.box.half_extents);
+      half = aabb_half_extents(p.rot, p.box.half_extents);
       break;
     case ModelShape::mesh: {
       const AABB local = d.mesh->bounds();
       p.box = {transform_point(w, local.center), local.half_extents * w.scale, p.rot};
       centre = p.box.center;
-      half = aabb_half_of(p.rot, p.box.half_extents);
+      half = aabb_half_extents(p.rot, p.box.half_extents);
       break;
     }
     case ModelShape::plane: {
       const vec3 n = d.plane.normal * p.rot;
       p.plane = {n, d.plane.distance * w.scale + dot(n, w.position)};
       p.bounds = {{0.0f, 0.0f, 0.0f}, {kInf, kInf, kInf}};
-      p.placed = finite3(p.plane.normal) && detail::is_finite(p.plane.distance) && finite3(w.position);
+      p.placed = gyro::is_finite(p.plane.normal) && detail::is_finite(p.plane.distance) && gyro::is_finite(w.position);
       return p;
     }
   }
@@ -167,8 +159,8 @@ Placed place(const ModelDef& d, const ModelTransform& w, uint32_t index) {
   const vec3 lo = aabb_min(p.bounds), hi = aabb_max(p.bounds);
   p.lo[0] = lo.x, p.lo[1] = lo.y, p.lo[2] = lo.z, p.hi[0] = hi.x, p.hi[1] = hi.y, p.hi[2] = hi.z;
   const float q[4] = {w.rotation.x, w.rotation.y, w.rotation.z, w.rotation.w};
-  bool ok = finite3(w.position) && detail::is_finite(w.scale) && finite3(half) && finite3(aabb_min(p.bounds)) &&
-            finite3(aabb_max(p.bounds)) && finite3(p.bounds.half_extents);
+  bool ok = gyro::is_finite(w.position) && detail::is_finite(w.scale) && gyro::is_finite(half) && gyro::is_finite(aabb_min(p.bounds)) &&
+            gyro::is_finite(aabb_max(p.bounds)) && gyro::is_finite(p.bounds.half_extents);
   for (float v : q) ok = ok && detail::is_finite(v);
   p.placed = ok;
   return p;
@@ -688,7 +680,7 @@ class RayWalk {
 // coordinate, a zero direction, tmin not finite or negative, tmax NaN or below tmin.
 bool valid_ray(const Ray& ray, float tmin, float tmax) {
   const vec3& d = ray.direction;
-  return finite3(ray.origin) && finite3(d) && (d.x != 0.0f || d.y != 0.0f || d.z != 0.0f) && detail::is_finite(tmin) &&
+  return gyro::is_finite(ray.origin) && gyro::is_finite(d) && (d.x != 0.0f || d.y != 0.0f || d.z != 0.0f) && detail::is_finite(tmin) &&
          tmin >= 0.0f && tmax >= tmin;
 }
 
@@ -771,9 +763,9 @@ void collect(const Scene& scene, BoxOk&& box_ok, Exact&& exact, std::vector<Mode
 }
 
 Status check_obb(const OBB& b) {
-  if (!finite3(b.center) || !finite3(b.half_extents)) return fail(Status::non_finite, "box is not finite");
+  if (!gyro::is_finite(b.center) || !gyro::is_finite(b.half_extents)) return fail(Status::non_finite, "box is not finite");
   for (int k = 0; k < 3; ++k)
-    if (!finite3({b.orientation.m[k][0], b.orientation.m[k][1], b.orientation.m[k][2]}))
+    if (!gyro::is_finite({b.orientation.m[k][0], b.orientation.m[k][1], b.orientation.m[k][2]}))
       return fail(Status::non_finite, "box orientation is not finite");
   if (!(b.half_extents.x >= 0.0f && b.half_extents.y >= 0.0f && b.half_extents.z >= 0.0f))
     return fail(Status::invalid_argument, "box has a negative half extent");
@@ -821,14 +813,14 @@ bool plane_touches(const Frustum& f, const Plane& p) {
 
 Status query(const Scene& scene, const Sphere& q, std::vector<ModelId>& out) {
   out.clear();
-  if (!finite3(q.center) || !detail::is_finite(q.radius)) return fail(Status::non_finite, "sphere is not finite");
+  if (!gyro::is_finite(q.center) || !detail::is_finite(q.radius)) return fail(Status::non_finite, "sphere is not finite");
   if (!(q.radius >= 0.0f)) return fail(Status::invalid_argument, "sphere radius %g is negative", double(q.radius));
   return query_shape(scene, q, region_of(q.center, {q.radius, q.radius, q.radius}), out);
 }
 
 Status query(const Scene& scene, const AABB& q, std::vector<ModelId>& out) {
   out.clear();
-  if (!finite3(q.center) || !finite3(q.half_extents)) return fail(Status::non_finite, "box is not finite");
+  if (!gyro::is_finite(q.center) || !gyro::is_finite(q.half_extents)) return fail(Status::non_finite, "box is not finite");
   if (!(q.half_extents.x >= 0.0f && q.half_extents.y >= 0.0f && q.half_extents.z >= 0.0f))
     return fail(Status::invalid_argument, "box has a negative half extent");
   return query_shape(scene, q, region_of(q.center, q.half_extents), out);
@@ -837,7 +829,7 @@ Status query(const Scene& scene, const AABB& q, std::vector<ModelId>& out) {
 Status query(const Scene& scene, const OBB& q, std::vector<ModelId>& out) {
   out.clear();
   GYRO_TRY(check_obb(q));
-  return query_shape(scene, q, region_of(q.center, aabb_half_of(q.orientation, q.half_extents)), out);
+  return query_shape(scene, q, region_of(q.center, aabb_half_extents(q.orientation, q.half_extents)), out);
 }
 
 Status query(const Scene& scene, const Frustum& f, std::vector<ModelId>& out) {

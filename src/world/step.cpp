@@ -27,11 +27,7 @@ vec3 shape_reach(const BodyStore& s, uint32_t i) {
   if (s.shape[i] == uint32_t(BodyShape::sphere)) return {s.radius[i], s.radius[i], s.radius[i]};
   const vec3 h = s.shape[i] == uint32_t(BodyShape::mesh) ? s.mesh[i]->bounds().half_extents
                                                            : vec3{s.hx[i], s.hy[i], s.hz[i]};
-  const mat3 r = to_mat3(s.orientation(i));  // rows: the body axes in the world
-  vec3 out;
-  for (int k = 0; k < 3; ++k)
-    out[k] = (std::abs(r.m[0][k]) * h.x + std::abs(r.m[1][k]) * h.y) + std::abs(r.m[2][k]) * h.z;
-  return out;
+  return aabb_half_extents(to_mat3(s.orientation(i)), h);
 }
 
 vec3 shape_center(const BodyStore& s, uint32_t i) {

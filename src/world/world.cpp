@@ -15,16 +15,14 @@ namespace {
 using detail::fail;
 using detail::is_finite;
 
-bool finite3(const vec3& v) { return is_finite(v.x) && is_finite(v.y) && is_finite(v.z); }
-bool finite4(const quat& q) { return is_finite(q.x) && is_finite(q.y) && is_finite(q.z) && is_finite(q.w); }
 
 Status check_vec(const vec3& v, const char* name) {
-  return finite3(v) ? Status::ok : fail(Status::non_finite, "%s is not finite", name);
+  return gyro::is_finite(v) ? Status::ok : fail(Status::non_finite, "%s is not finite", name);
 }
 
 // A unit quaternion from the input, or an error for NaN, infinite or (near) zero ones.
 Status unit_quat(const quat& q, quat* out, const char* name) {
-  if (!finite4(q)) return fail(Status::non_finite, "%s is not finite", name);
+  if (!gyro::is_finite(q)) return fail(Status::non_finite, "%s is not finite", name);
   const float n = dot(q, q);
   if (!(n > 1e-12f) || !is_finite(n)) return fail(Status::invalid_argument, "%s is zero or too large", name);
   *out = normalized(q);
