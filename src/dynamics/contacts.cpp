@@ -103,12 +103,14 @@ bool ContactRecord::touching() const {
 
 void ContactSet::clear() {
   records_.clear();
+  touch_new_.clear();
   begin_.clear();
   end_.clear();
 }
 
 void ContactSet::remove_body(uint32_t id_index) {
   std::erase_if(records_, [&](const ContactRecord& r) { return r.index_a() == id_index || r.index_b() == id_index; });
+  std::erase_if(touch_new_, [&](const TouchKey& t) { return t.event.a.index == id_index || t.event.b.index == id_index; });
 }
 
 void ContactSet::remap_slot(uint32_t from, uint32_t to) {
@@ -201,7 +203,7 @@ void ContactSet::update(const BodyStore& s, const std::vector<CandidatePair>& pa
       if (r.touching() && (keys.empty() || keys.back().key != r.key))
         keys.push_back({r.key, {{r.index_a(), r.gen_a}, {r.index_b(), r.gen_b}}});
   };
-  touching(old_, touch_old_);
+  touch_old_.swap(touch_new_);  // last step's touching pairs (less those of destroyed bodies)
   touching(records_, touch_new_);
   begin_.clear();
   end_.clear();

@@ -335,7 +335,9 @@ void World::Impl::step(float dt) {
   timings.broadphase = ms_since(t0);
 
   t0 = Clock::now();
-  if (!candidates.empty() || !contacts.records().empty()) {
+  // Also with nothing to collide: last step's touches must end and its events clear.
+  if (!candidates.empty() || !contacts.records().empty() || !contacts.begin_events().empty() ||
+      !contacts.end_events().empty()) {
     detail::ContactSettings cs;
     cs.speculative_distance = 4.0f * def.linear_slop;
     cs.continuous = def.enable_continuous;
