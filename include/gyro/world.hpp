@@ -45,6 +45,7 @@ namespace gyro {
 
 class TriangleMesh;
 class ParticleSystem;
+class SoftBody;
 
 /// A stable body name; all-zero is null. Ordered by index, then generation.
 struct BodyId {
@@ -55,6 +56,14 @@ struct BodyId {
   friend bool operator<(BodyId a, BodyId b) {
     return a.index < b.index || (a.index == b.index && a.generation < b.generation);
   }
+};
+
+/// A soft body (cloth, soft body, springs) in a world; all-zero is null.
+struct SoftBodyId {
+  uint32_t index = 0;
+  uint32_t generation = 0;
+  bool is_null() const { return index == 0 && generation == 0; }
+  friend bool operator==(SoftBodyId a, SoftBodyId b) { return a.index == b.index && a.generation == b.generation; }
 };
 
 /// Values are part of the C ABI.
@@ -132,6 +141,7 @@ struct WorldDef {
 /// Time spent in each stage of the last step, in milliseconds (0 for a skipped stage).
 struct StepTimings {
   double forces = 0, broadphase = 0, narrowphase = 0, islands = 0, solver = 0, particles = 0, total = 0;
+  double soft_bodies = 0;  ///< springs, cloth and soft bodies (after the particles)
 };
 
 /// Counters of the last step.
@@ -212,6 +222,18 @@ class World {
   /// first use with the world's gravity. A world whose particle system is empty skips the
   /// stage. Particles collide with the system's own colliders (gyro/particles.hpp).
   ParticleSystem& particles();
+
+  /// Springs, cloth and soft bodies (gyro/soft_body.hpp), stepped after the particles. The
+  /// world keeps a copy of `body`; besides its own colliders, each soft body collides with
+  /// every rigid body's shape at its current pose (one-way: cloth does not push bodies).
+  /// A world without soft bodies skips the stage.
+  Status add_soft_body(const SoftBody& body, SoftBodyId* out);
+  Status destroy_soft_body(SoftBodyId id);
+  bool is_valid(SoftBodyId id) const;
+  std::size_t soft_body_count() const;
+  /// The world's soft body, to read or change (null for a stale id); valid until it is destroyed.
+  SoftBody* soft_body(SoftBodyId id);
+  const SoftBody* soft_body(SoftBodyId id) const;
 
   struct Impl;
 
