@@ -19,6 +19,8 @@ void run_b1(const Options&);
 void run_p1(const Options&);
 void run_p2(const Options&);
 void run_p3(const Options&);
+void run_c1(const Options&);
+void run_gjk(const Options&);
 
 namespace {
 const Workload kWorkloads[] = {
@@ -35,6 +37,8 @@ const Workload kWorkloads[] = {
      run_p1},
     {"P2", "box pyramid, base 100 (5,050 boxes), 300 steps, sleeping off; peer: Bullet", run_p2},
     {"P3", "16 pyramids of base 10 (880 boxes) on one ground, 300 steps, sleeping off; peer: Bullet", run_p3},
+    {"C1", "hanging cloth 32^2..256^2, two corners pinned, 600 steps; xpbd and springs; peer: Bullet btSoftBody", run_c1},
+    {"GJK", "GJK / EPA on the N1 OBB pairs and random hulls: intersection, distance, penetration; peers: libccd, Bullet", run_gjk},
 };
 
 int usage() {
