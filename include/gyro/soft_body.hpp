@@ -48,6 +48,10 @@ namespace gyro {
 
 class TriangleMesh;
 
+namespace detail {
+struct SoftAccess;  // the world's stepping and hashing hooks (src/dynamics/soft_body_internal.hpp)
+}
+
 /// Values are part of the C ABI.
 enum class SoftModel : uint32_t {
   xpbd = 0,
@@ -220,6 +224,7 @@ class SoftBody {
   struct Impl;
 
  private:
+  friend struct detail::SoftAccess;
   std::unique_ptr<Impl> impl_;
 };
 

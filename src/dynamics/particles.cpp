@@ -14,6 +14,7 @@
 #include "core/parallel.hpp"
 #include "core/state_hash.hpp"
 #include "core/validate.hpp"
+#include "dynamics/particle_colliders.hpp"
 #include "dynamics/particles_internal.hpp"
 #include "gyro/raycast.hpp"
 
@@ -26,93 +27,14 @@ namespace {
 using detail::Column;
 using detail::fail;
 using detail::is_finite;
+using detail::Collider;
+using detail::ColliderKind;
+using detail::first_hit;
+using detail::push_out;
+using detail::skin_at;
 
 constexpr int kMaxBounces = 4;            // reflected sweeps per step; the next surface stops the particle
-constexpr float kSkin = 1e-3f;            // m left between a stopped particle and the surface ...
-constexpr float kSkinRelative = 0x1p-16f; // ... plus this fraction of its largest coordinate (>> raycast error)
 constexpr std::size_t kChunk = 512;       // particles per parallel chunk (fixed: results do not depend on threads)
-
-enum class ColliderKind : uint32_t { none = 0, sphere = 1, aabb = 2, obb = 3, plane = 4 };
-
-/// One static collider; only the member named by kind is used (the others stay default so
-/// the hash of a collider is a function of its kind and shape alone).
-struct Collider {
-  ColliderKind kind = ColliderKind::none;
-  Sphere sphere;
-  AABB aabb;
-  OBB obb;
-  Plane plane;
-};
-
-float max_abs3(const vec3& v) {
-  const float x = std::abs(v.x), y = std::abs(v.y), z = std::abs(v.z);
-  const float m = x > y ? x : y;
-  return m > z ? m : z;
-}
-float skin_at(const vec3& p) { return kSkin + max_abs3(p) * kSkinRelative; }
-
-/// The first entering crossing of the segment s -> s + d with collider c: t in [0, 1] (units
-/// of |d|) and the outward normal; exits (the ray leaving a solid) do not count.
-bool first_hit(const Collider& c, const vec3& s, const vec3& d, float* t, vec3* point, vec3* normal) {
-  const Ray ray{s, d};
-  RaycastResult r;
-  switch (c.kind) {
-    case ColliderKind::sphere: r = raycast(c.sphere, ray, 0.0f, 1.0f); break;
-    case ColliderKind::aabb: r = raycast(c.aabb, ray, 0.0f, 1.0f); break;
-    case ColliderKind::obb: r = raycast(c.obb, ray, 0.0f, 1.0f); break;
-    case ColliderKind::plane: r = raycast(c.plane, ray, 0.0f, 1.0f); break;
-    default: return false;
-  }
-  if (!r.hit || !(dot(r.normal, d) < 0.0f)) return false;
-  *t = r.t, *point = r.point, *normal = r.normal;
-  return true;
-}
-
-/// If p is strictly inside collider c (behind it, for a plane), the point just outside the
-/// closest surface; otherwise p. Box faces: the shallowest, ties to the lower axis, then the
-/// positive side.
-vec3 push_out(const Collider& c, const vec3& p) {
-  switch (c.kind) {
-    case ColliderKind::sphere: {
-      const vec3 d = p - c.sphere.center;
-      const float d2 = dot(d, d), r = c.sphere.radius;
-      if (!(d2 < r * r)) return p;
-      const float len = std::sqrt(d2);
-      const vec3 n = len > 0.0f ? d / len : vec3{0.0f, 1.0f, 0.0f};
-      const vec3 surface = c.sphere.center + n * r;
-      return surface + n * skin_at(surface);
-    }
-    case ColliderKind::aabb:
-    case ColliderKind::obb: {
-      const bool oriented = c.kind == ColliderKind::obb;
-      const vec3 center = oriented ? c.obb.center : c.aabb.center;
-      const vec3 half = oriented ? c.obb.half_extents : c.aabb.half_extents;
-      const vec3 axes[3] = {oriented ? vec3{c.obb.orientation[0][0], c.obb.orientation[0][1], c.obb.orientation[0][2]} : vec3{1, 0, 0},
-                            oriented ? vec3{c.obb.orientation[1][0], c.obb.orientation[1][1], c.obb.orientation[1][2]} : vec3{0, 1, 0},
-                            oriented ? vec3{c.obb.orientation[2][0], c.obb.orientation[2][1], c.obb.orientation[2][2]} : vec3{0, 0, 1}};
-      const vec3 d = p - center;
-      int best = -1;
-      float best_depth = 0.0f, best_local = 0.0f;
-      for (int k = 0; k < 3; ++k) {
-        const float local = oriented ? dot(d, axes[k]) : d[k];
-        const float depth = half[k] - std::abs(local);
-        if (!(depth > 0.0f)) return p;  // outside or on the surface of this slab
-        if (best < 0 || depth < best_depth) best = k, best_depth = depth, best_local = local;
-      }
-      const float side = best_local >= 0.0f ? 1.0f : -1.0f;
-      const vec3 n = axes[best] * side;
-      const vec3 surface = p + n * best_depth;
-      return surface + n * skin_at(surface);
-    }
-    case ColliderKind::plane: {
-      const float depth = c.plane.distance - dot(c.plane.normal, p);
-      if (!(depth > 0.0f)) return p;
-      const vec3 surface = p + c.plane.normal * depth;
-      return surface + c.plane.normal * skin_at(surface);
-    }
-    default: return p;
-  }
-}
 
 /// Moves a particle from s towards e through the colliders: pushes s out of solids, then
 /// sweeps, stopping at the first surface, reflecting velocity v and the rest of the
@@ -481,17 +403,7 @@ void detail::ParticleAccess::hash_into(const ParticleSystem& ps, StateHasher& h)
   h.add_u32s({m.reseed.data(), n});
   for (const ParticleId& id : m.ids) h.add_u64((uint64_t{id.index} << 32) | id.generation);
   h.add_u64(m.colliders.size());
-  for (const Collider& c : m.colliders) {
-    h.add_u32(static_cast<uint32_t>(c.kind));
-    const float f[] = {c.sphere.center.x, c.sphere.center.y, c.sphere.center.z, c.sphere.radius,
-                       c.aabb.center.x, c.aabb.center.y, c.aabb.center.z,
-                       c.aabb.half_extents.x, c.aabb.half_extents.y, c.aabb.half_extents.z,
-                       c.obb.center.x, c.obb.center.y, c.obb.center.z,
-                       c.obb.half_extents.x, c.obb.half_extents.y, c.obb.half_extents.z,
-                       c.plane.normal.x, c.plane.normal.y, c.plane.normal.z, c.plane.distance};
-    h.add_floats(f);
-    h.add_floats({c.obb.orientation.data(), 9});
-  }
+  for (const Collider& c : m.colliders) detail::hash_collider(c, h);
 }
 
 }  // namespace gyro

@@ -314,6 +314,10 @@ uint64_t World::hash() const {
   impl_->bodies.hash_into(h);
   impl_->contacts.hash_into(h);
   if (impl_->particles) detail::hash_into(*impl_->particles, h);
+  if (!impl_->soft_bodies.empty()) {
+    impl_->soft_pool.hash_into(h);
+    for (const auto& body : impl_->soft_bodies) detail::SoftAccess::hash_into(*body, h);
+  }
   return h.digest();
 }
 

@@ -6,6 +6,9 @@
 #include "dynamics/broadphase.hpp"
 #include "dynamics/contact_solver.hpp"
 #include "dynamics/contacts.hpp"
+#include "core/id_pool.hpp"
+#include "dynamics/particle_colliders.hpp"
+#include "dynamics/soft_body_internal.hpp"
 #include "dynamics/islands.hpp"
 #include "gyro/world.hpp"
 
@@ -22,6 +25,8 @@ struct World::Impl {
   detail::Islands islands;
   detail::ContactSolver solver;
   std::unique_ptr<ParticleSystem> particles;  // created on first use: a world without particles pays nothing
+  detail::IdPool soft_pool;                    // soft bodies: ids over dense slots
+  std::vector<std::unique_ptr<SoftBody>> soft_bodies;  // soft_bodies[slot]
   StepTimings timings;
   StepStats stats;
   uint64_t steps = 0;
@@ -40,6 +45,8 @@ struct World::Impl {
   std::vector<float> lin_acc, ang_acc;  // 3 per solver body: constant over the step
   std::vector<uint8_t> island_awake;
   std::vector<float> island_rest;
+  std::vector<detail::Collider> soft_shapes;        // the bodies near a soft body, as colliders
+  std::vector<detail::MeshCollider> soft_meshes;
 
   void step(float dt);
   void find_pairs(float dt);
@@ -50,6 +57,7 @@ struct World::Impl {
   void write_back();
   void update_sleep(float dt);
   void wake(uint32_t slot);
+  void step_soft_bodies(float dt);  // world_soft.cpp
 };
 
 }  // namespace gyro

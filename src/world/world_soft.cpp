@@ -1,1 +1,110 @@
-// placeholder: being written
+// The world's soft bodies: their ids, and the stage that steps them after the particles with
+// every rigid body near them as a collider at its current pose (one-way coupling).
+#include "core/error.hpp"
+#include "core/validate.hpp"
+#include "gyro/soft_body.hpp"
+#include "gyro/triangle_mesh.hpp"
+#include "world/world_impl.hpp"
+
+namespace gyro {
+namespace {
+
+detail::Id to_id(SoftBodyId id) { return {id.index, id.generation}; }
+
+}  // namespace
+
+Status World::add_soft_body(const SoftBody& body, SoftBodyId* out) {
+  GYRO_TRY(detail::require_not_null(out, "out"));
+  Impl& m = *impl_;
+  auto copy = std::make_unique<SoftBody>(body);
+  const detail::Id id = m.soft_pool.create();
+  m.soft_bodies.push_back(std::move(copy));  // the new dense slot is the last
+  *out = {id.index, id.generation};
+  return Status::ok;
+}
+
+Status World::destroy_soft_body(SoftBodyId id) {
+  Impl& m = *impl_;
+  if (!m.soft_pool.valid(to_id(id)))
+    return detail::fail(Status::stale_id, "soft body id {%u, %u} is stale or null", id.index, id.generation);
+  const detail::IdPool::Removal r = m.soft_pool.destroy(to_id(id));
+  m.soft_bodies[r.slot] = std::move(m.soft_bodies.back());  // the pool moved the last slot into the hole too
+  m.soft_bodies.pop_back();
+  return Status::ok;
+}
+
+bool World::is_valid(SoftBodyId id) const { return impl_->soft_pool.valid(to_id(id)); }
+std::size_t World::soft_body_count() const { return impl_->soft_bodies.size(); }
+
+SoftBody* World::soft_body(SoftBodyId id) {
+  const uint32_t slot = impl_->soft_pool.slot(to_id(id));
+  return slot == detail::IdPool::kNoSlot ? nullptr : impl_->soft_bodies[slot].get();
+}
+
+const SoftBody* World::soft_body(SoftBodyId id) const {
+  const uint32_t slot = impl_->soft_pool.slot(to_id(id));
+  return slot == detail::IdPool::kNoSlot ? nullptr : impl_->soft_bodies[slot].get();
+}
+
+void World::Impl::step_soft_bodies(float dt) {
+  detail::BodyStore& s = bodies;
+  const uint32_t n = static_cast<uint32_t>(s.size());
+  for (auto& body : soft_bodies) {
+    // The bodies whose boxes meet the soft body's box, widened by its fastest particle's
+    // travel over the step (and its thickness), become its colliders, in slot order.
+    const SoftView v = body->view();
+    float speed2 = 0.0f;
+    for (std::size_t i = 0; i < v.count; ++i) {
+      const float q = v.vx[i] * v.vx[i] + v.vy[i] * v.vy[i] + v.vz[i] * v.vz[i];
+      speed2 = q > speed2 ? q : speed2;
+    }
+    const float grav = length(body->settings().gravity);
+    vec3 lo, hi;
+    if (!detail::SoftAccess::bounds(*body, (std::sqrt(speed2) + grav * dt) * dt + body->settings().thickness + 0.01f, &lo, &hi))
+      continue;
+    soft_shapes.clear();
+    soft_meshes.clear();
+    for (uint32_t i = 0; i < n; ++i) {
+      const vec3 p{s.px[i], s.py[i], s.pz[i]};
+      const quat q{s.qx[i], s.qy[i], s.qz[i], s.qw[i]};
+      detail::Collider c;
+      vec3 half;
+      switch (static_cast<BodyShape>(s.shape[i])) {
+        case BodyShape::sphere:
+          c.kind = detail::ColliderKind::sphere, c.sphere = {p, s.radius[i]};
+          half = {s.radius[i], s.radius[i], s.radius[i]};
+          break;
+        case BodyShape::box:
+          c.kind = detail::ColliderKind::obb;
+          c.obb.center = p, c.obb.half_extents = {s.hx[i], s.hy[i], s.hz[i]}, c.obb.orientation = to_mat3(q);
+          half = aabb_half_extents(c.obb.orientation, c.obb.half_extents);
+          break;
+        case BodyShape::plane: {
+          const vec3 normal = rotate(q, vec3{0.0f, 1.0f, 0.0f});
+          c.kind = detail::ColliderKind::plane, c.plane = {normal, dot(normal, p)};
+          soft_shapes.push_back(c);
+          continue;
+        }
+        case BodyShape::mesh: {
+          const TriangleMesh* mesh = s.mesh[i];
+          if (!mesh || mesh->empty()) continue;
+          const AABB local = mesh->bounds();
+          const mat3 r = to_mat3(q);
+          const vec3 centre = p + rotate(q, local.center);
+          const vec3 e = aabb_half_extents(r, local.half_extents);
+          bool meets = true;
+          for (int k = 0; k < 3; ++k) meets = meets && centre[k] - e[k] <= hi[k] && centre[k] + e[k] >= lo[k];
+          if (meets) soft_meshes.push_back({mesh, p, q});
+          continue;
+        }
+        default: continue;
+      }
+      bool meets = true;
+      for (int k = 0; k < 3; ++k) meets = meets && p[k] - half[k] <= hi[k] && p[k] + half[k] >= lo[k];
+      if (meets) soft_shapes.push_back(c);
+    }
+    detail::SoftAccess::step_with(*body, dt, soft_shapes, soft_meshes);
+  }
+}
+
+}  // namespace gyro

@@ -1,0 +1,144 @@
+// Convex shapes, their support functions, GJK (intersection and distance with witness
+// points), EPA (penetration depth, normal and contact points) and convex hulls (quickhull).
+//
+// Conventions:
+//  - A ConvexShape is described in its local frame; a ConvexPose places it in the world with
+//    the OBB convention of gyro/shapes.hpp: world = local * rotation + position, the rows of
+//    rotation being the shape's local x, y, z axes (a proper rotation, rows unit length).
+//  - Capsules and cylinders run along their local y axis, from -half_height to +half_height.
+//  - Spheres and capsules are a core (a point, a segment) plus a radius: GJK runs on the
+//    cores, so sphere and capsule distances are exact to float rounding, and EPA is only
+//    needed when the cores themselves overlap.
+//  - Every query works in A's frame (B is brought there with one relative transform), so
+//    two shapes far from the origin (1e4) lose no more precision than their offset costs.
+//  - normal points from A towards B: moving B by depth * normal separates an intersecting
+//    pair; for a separated pair B moves closer along -normal by distance.
+//  - Nothing ever returns NaN: a non-finite input gives ConvexStatus::invalid_input, zero
+//    outputs and a message in gyro::last_error().
+//  - Determinism: only + - * / sqrt and comparisons in a fixed order, fixed-capacity
+//    buffers, ties broken by lowest index. Bit-identical across runs, compilers, CPUs.
+#pragma once
+
+#include "gyro/math_mat.hpp"
+#include "gyro/math_vec.hpp"
+#include "gyro/shapes.hpp"
+#include "gyro/status.hpp"
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace gyro {
+
+enum class ConvexType : uint32_t {
+  sphere = 0,    ///< radius around the origin
+  box = 1,       ///< half_extents around the origin
+  capsule = 2,   ///< segment (0, +-half_height, 0) plus radius
+  cylinder = 3,  ///< axis (0, +-half_height, 0), radius
+  triangle = 4,  ///< corners v[0], v[1], v[2] (a flat shape: it has no inside)
+  points = 5,    ///< the convex hull of points[0 .. count): a ConvexHull's vertices or any cloud
+};
+
+/// A convex shape in its local frame. Plain data; `points` is not owned (a ConvexHull or
+/// the caller's array must outlive the shape). Build with the make_* functions below.
+struct ConvexShape {
+  ConvexType type = ConvexType::sphere;
+  float radius = 0.0f;       ///< sphere, capsule, cylinder
+  float half_height = 0.0f;  ///< capsule, cylinder
+  vec3 half_extents;         ///< box
+  vec3 v[3];                 ///< triangle
+  const vec3* points = nullptr;  ///< points: vertex array
+  uint32_t count = 0;            ///< points: number of vertices (>= 1)
+};
+
+/// Where a shape is: world = local * rotation + position (rows of rotation = local axes).
+struct ConvexPose {
+  vec3 position;
+  mat3 rotation;
+};
+
+/// Shape builders: each checks its arguments (finite, sizes >= 0, points non-null and
+/// count >= 1) and returns the status, leaving `out` unchanged on failure.
+Status make_sphere(float radius, ConvexShape& out);
+Status make_box(const vec3& half_extents, ConvexShape& out);
+Status make_capsule(float radius, float half_height, ConvexShape& out);
+Status make_cylinder(float radius, float half_height, ConvexShape& out);
+Status make_triangle(const vec3& a, const vec3& b, const vec3& c, ConvexShape& out);
+Status make_convex_points(const vec3* points, std::size_t count, ConvexShape& out);
+
+/// The point of the shape (local frame) furthest along dir (any length; a zero dir gives a
+/// point of the shape). Ties go to the lowest vertex index, so the answer is deterministic.
+vec3 support(const ConvexShape& shape, const vec3& dir);
+/// The same in the world: dir and result in world coordinates.
+vec3 support(const ConvexShape& shape, const ConvexPose& pose, const vec3& dir);
+/// The support of the Minkowski difference A - B: support(A, d) - support(B, -d).
+vec3 support_difference(const ConvexShape& a, const ConvexPose& pa, const ConvexShape& b, const ConvexPose& pb,
+                        const vec3& dir);
+
+/// How a query ended. iteration_limit is never a verdict of separation: the caller decides.
+enum class ConvexStatus : uint32_t {
+  separated = 0,        ///< distance > touching tolerance
+  touching = 1,         ///< |signed distance| <= touching tolerance (counts as overlapping)
+  intersecting = 2,     ///< the shapes overlap by more than the tolerance
+  iteration_limit = 3,  ///< no convergence; the fields hold the best estimate so far
+  invalid_input = 4,    ///< non-finite shape or pose; every field is zero
+};
+
+/// True for touching and intersecting.
+constexpr bool overlapping(ConvexStatus s) { return s == ConvexStatus::touching || s == ConvexStatus::intersecting; }
+
+/// Result of a query, in world coordinates.
+struct ConvexResult {
+  ConvexStatus status = ConvexStatus::separated;
+  /// Signed distance: > 0 the gap, <= 0 minus the penetration depth (convex_intersect and
+  /// convex_distance give 0 for intersecting pairs; convex_penetration gives -depth).
+  float distance = 0.0f;
+  vec3 normal;   ///< unit, from A towards B; zero when undefined (e.g. coincident cores)
+  vec3 point_a;  ///< witness point on A (closest point, or deepest point of A inside B)
+  vec3 point_b;  ///< witness point on B; point_b - point_a = distance * normal
+  uint32_t iterations = 0;  ///< GJK plus EPA iterations
+};
+
+/// Query options. Tolerances are relative to the pair's size (the largest support vertex
+/// distance from A's origin, at least 1e-30), so they hold for tiny and huge shapes alike.
+struct ConvexQueryOptions {
+  float touch_tolerance = 1e-6f;  ///< |distance| <= this * size is "touching"
+  uint32_t max_gjk_iterations = 64;
+  uint32_t max_epa_iterations = 64;
+};
+
+/// Boolean overlap by GJK: stops at the first separating axis or enclosing simplex. distance,
+/// normal and witnesses are those at the exit (exact only when converged).
+ConvexResult convex_intersect(const ConvexShape& a, const ConvexPose& pa, const ConvexShape& b,
+                              const ConvexPose& pb, const ConvexQueryOptions& options = {});
+/// Distance and closest points by GJK. Intersecting pairs report distance 0 (no EPA).
+ConvexResult convex_distance(const ConvexShape& a, const ConvexPose& pa, const ConvexShape& b,
+                             const ConvexPose& pb, const ConvexQueryOptions& options = {});
+/// Distance when separated; penetration depth, normal and contact points by EPA when not.
+ConvexResult convex_penetration(const ConvexShape& a, const ConvexPose& pa, const ConvexShape& b,
+                                const ConvexPose& pb, const ConvexQueryOptions& options = {});
+
+/// A convex polyhedron from build_convex_hull: welded vertices, planar faces (coplanar
+/// triangles merged, collinear boundary vertices removed) and unique edges.
+struct ConvexHull {
+  std::vector<vec3> vertices;           ///< hull vertices, in the order of their first input index
+  std::vector<uint32_t> face_start;     ///< face f has face_vertices[face_start[f] .. face_start[f+1])
+  std::vector<uint32_t> face_vertices;  ///< indices into vertices, counter-clockwise seen from outside
+  std::vector<Plane> planes;            ///< per face: outward unit normal and distance
+  std::vector<uint32_t> edges;          ///< pairs (a, b) with a < b, sorted
+  std::size_t face_count() const { return planes.size(); }
+  std::size_t edge_count() const { return edges.size() / 2; }
+  /// The hull as a support shape (points into this hull's vertices).
+  ConvexShape shape() const;
+};
+
+/// Quickhull (Barber, Dobkin, Huhdanpaa 1996) in binary64 from the float points. Points
+/// closer than the tolerance (about 1e-6 of the cloud's extent) to a hull plane count as
+/// on it; so near-duplicates are welded and near-coplanar faces merged. Failures leave
+/// `out` empty: null_argument (points null with count > 0), invalid_count (fewer than 4
+/// points), non_finite (a NaN or infinite coordinate), invalid_argument (all points
+/// coincide, are collinear or coplanar: no volume; such sets are valid ConvexShapes via
+/// make_convex_points, just not polyhedra), internal (a consistency check failed).
+Status build_convex_hull(const vec3* points, std::size_t count, ConvexHull& out);
+
+}  // namespace gyro

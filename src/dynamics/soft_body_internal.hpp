@@ -1,0 +1,29 @@
+// The world's access to a SoftBody beyond the public API: stepping with the world's bodies
+// as extra colliders, and hashing into the world's witness.
+#pragma once
+
+#include "core/state_hash.hpp"
+#include "dynamics/particle_colliders.hpp"
+#include "gyro/math_quat.hpp"
+#include "gyro/soft_body.hpp"
+
+#include <span>
+
+namespace gyro::detail {
+
+/// A triangle mesh placed in the world (the mesh is in its own frame).
+struct MeshCollider {
+  const TriangleMesh* mesh = nullptr;
+  vec3 position;
+  quat orientation;
+};
+
+struct SoftAccess {
+  /// step(dt) with these colliders besides the body's own (valid during the call only).
+  static Status step_with(SoftBody& body, float dt, std::span<const Collider> colliders, std::span<const MeshCollider> meshes);
+  /// The box around every particle now, widened by `margin` (false for an empty body).
+  static bool bounds(const SoftBody& body, float margin, vec3* lo, vec3* hi);
+  static void hash_into(const SoftBody& body, StateHasher& h);
+};
+
+}  // namespace gyro::detail
