@@ -1,1 +1,273 @@
-// placeholder: being written
+// EPA, the expanding polytope algorithm (van den Bergen 2001): from a simplex around the
+// origin, grow a polytope inside A - B towards the face closest to the origin until the
+// support along that face's normal adds nothing; that face gives the penetration depth,
+// normal and (through the barycentric weights of the origin's projection) the contact
+// points on A and B.
+//
+// Robustness choices:
+//  - GJK may exit with 1 to 3 points (touching shapes, symmetric pairs whose simplex passes
+//    through the origin). The simplex is blown up to a tetrahedron with supports along
+//    directions orthogonal to it; if A - B has no extent that way (two coplanar triangles,
+//    two segments) it is flat: depth 0 along its normal, reported as such.
+//  - The visible region is found by a walk over face adjacency from the closest face (the
+//    silhouette walk), so the horizon is always one connected loop, and new faces are
+//    linked to each other by matching their edge endpoints, never by assumed order.
+//  - Sliver faces (sine of the corner angle below 1e-6) get no trusted normal: they are
+//    never chosen as closest.
+//  - Fixed capacity (128 vertices, 256 faces), no heap; on exhaustion or the iteration
+//    limit the best face so far is returned with converged = false.
+//
+// Determinism: + - * / sqrt and comparisons in a fixed order; ties go to the lowest face
+// index.
+#include "geometry/convex_support.hpp"
+
+namespace gyro::detail {
+namespace {
+
+constexpr int kMaxVerts = 128;
+constexpr int kMaxFaces = 256;
+
+struct Face {
+  int v[3];
+  int adj[3];       // the face across edge i (v[i] -> v[i+1])
+  int adj_edge[3];  // that face's index for the same edge
+  vec3 n;
+  float d;
+  bool dead;
+  bool sliver;
+};
+
+struct Polytope {
+  SupportPoint vert[kMaxVerts];
+  Face face[kMaxFaces];
+  int nv = 0, nf = 0;
+  int horizon_face[kMaxFaces], horizon_edge[kMaxFaces];
+  int nh = 0;
+
+  int add_face(int a, int b, int c) {
+    Face& f = face[nf];
+    f.v[0] = a, f.v[1] = b, f.v[2] = c;
+    f.adj[0] = f.adj[1] = f.adj[2] = -1;
+    f.dead = false;
+    const vec3 e1 = vert[b].w - vert[a].w, e2 = vert[c].w - vert[a].w;
+    const vec3 n = cross(e1, e2);
+    const float nn = dot(n, n), ee = dot(e1, e1) * dot(e2, e2);
+    f.sliver = !(nn > 1e-12f * ee) || !(nn > 0.0f);
+    f.n = f.sliver ? vec3{} : normalized(n);
+    f.d = f.sliver ? 0.0f : dot(f.n, vert[a].w);
+    return nf++;
+  }
+
+  bool visible(const Face& f, const vec3& w) const { return !f.sliver && dot(f.n, w) - f.d > 0.0f; }
+
+  // Van den Bergen's silhouette walk: g was reached across its edge j.
+  void walk(int g, int j, const vec3& w) {
+    Face& f = face[g];
+    if (f.dead) return;
+    if (!visible(f, w)) {
+      horizon_face[nh] = g, horizon_edge[nh] = j, ++nh;
+      return;
+    }
+    f.dead = true;
+    walk(f.adj[(j + 1) % 3], f.adj_edge[(j + 1) % 3], w);
+    walk(f.adj[(j + 2) % 3], f.adj_edge[(j + 2) % 3], w);
+  }
+};
+
+// Links every unlinked edge of faces [from, nf) with its reverse among those faces;
+// false if some edge finds no partner (the polytope is no longer a closed surface).
+bool link(Polytope& p, int from) {
+  for (int f = from; f < p.nf; ++f)
+    for (int i = 0; i < 3; ++i) {
+      if (p.face[f].adj[i] >= 0) continue;
+      const int a = p.face[f].v[i], b = p.face[f].v[(i + 1) % 3];
+      bool found = false;
+      for (int g = from; g < p.nf && !found; ++g)
+        for (int j = 0; j < 3 && !found; ++j)
+          if (g != f && p.face[g].v[j] == b && p.face[g].v[(j + 1) % 3] == a) {
+            p.face[f].adj[i] = g, p.face[f].adj_edge[i] = j;
+            p.face[g].adj[j] = f, p.face[g].adj_edge[j] = i;
+            found = true;
+          }
+      if (!found) return false;
+    }
+  return true;
+}
+
+float dist_to_line(const vec3& p, const vec3& o, const vec3& d) {
+  const float dd = dot(d, d);
+  if (!(dd > 0.0f)) return length(p - o);
+  return length(cross(p - o, d)) / std::sqrt(dd);
+}
+
+// A unit vector orthogonal to d (d non-zero): cross with the axis d is least aligned with.
+vec3 orthogonal(const vec3& d) {
+  const float ax = d.x < 0 ? -d.x : d.x, ay = d.y < 0 ? -d.y : d.y, az = d.z < 0 ? -d.z : d.z;
+  const vec3 axis = (ax <= ay && ax <= az) ? vec3{1, 0, 0} : (ay <= az ? vec3{0, 1, 0} : vec3{0, 0, 1});
+  return normalized(cross(d, axis));
+}
+
+// Grows 1-3 points to 4 with supports off their span; false if A - B is flat that way.
+// On false, flat_normal is a unit normal of the flat set (or of the span).
+bool blow_up(Polytope& p, const PairFrame& pair, float eps, vec3& flat_normal) {
+  if (p.nv == 1) {
+    static const vec3 dirs[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+    for (const vec3& d : dirs) {
+      const SupportPoint s = pair.support(d);
+      if (length(s.w - p.vert[0].w) > eps) {
+        p.vert[p.nv++] = s;
+        break;
+      }
+    }
+    if (p.nv == 1) {
+      flat_normal = {0, 1, 0};
+      return false;
+    }
+  }
+  if (p.nv == 2) {
+    const vec3 d = p.vert[1].w - p.vert[0].w;
+    const vec3 e1 = orthogonal(d), e2 = normalized(cross(d, e1));
+    const vec3 dirs[4] = {e1, -e1, e2, -e2};
+    for (const vec3& dir : dirs) {
+      const SupportPoint s = pair.support(dir);
+      if (dist_to_line(s.w, p.vert[0].w, d) > eps) {
+        p.vert[p.nv++] = s;
+        break;
+      }
+    }
+    if (p.nv == 2) {
+      flat_normal = e1;
+      return false;
+    }
+  }
+  if (p.nv == 3) {
+    const vec3 n = normalized(cross(p.vert[1].w - p.vert[0].w, p.vert[2].w - p.vert[0].w));
+    const SupportPoint s1 = pair.support(n), s2 = pair.support(-n);
+    const float h1 = dot(s1.w - p.vert[0].w, n), h2 = -dot(s2.w - p.vert[0].w, n);
+    if (!(h1 > eps) && !(h2 > eps)) {
+      // Point the flat normal from A towards B, by B's position in A's frame.
+      flat_normal = dot(n, pair.pos_b) < 0.0f ? -n : n;
+      if (dot(flat_normal, flat_normal) == 0.0f) flat_normal = {0, 1, 0};
+      return false;
+    }
+    p.vert[p.nv++] = h1 >= h2 ? s1 : s2;
+  }
+  return true;
+}
+
+// Barycentric weights of q (on the plane of a, b, c) by areas in the best projection,
+// clamped to the triangle.
+void barycentric(const vec3& a, const vec3& b, const vec3& c, const vec3& q, float l[3]) {
+  const vec3 n = cross(b - a, c - a);
+  const float ax = n.x < 0 ? -n.x : n.x, ay = n.y < 0 ? -n.y : n.y, az = n.z < 0 ? -n.z : n.z;
+  const int k = (ax >= ay && ax >= az) ? 0 : (ay >= az ? 1 : 2);
+  const int u = (k + 1) % 3, w = (k + 2) % 3;
+  auto area = [&](const vec3& p0, const vec3& p1, const vec3& p2) {
+    return (p1[u] - p0[u]) * (p2[w] - p0[w]) - (p1[w] - p0[w]) * (p2[u] - p0[u]);
+  };
+  float c0 = area(q, b, c), c1 = area(a, q, c), c2 = area(a, b, q);
+  const float total = n[k];
+  if (total < 0.0f) c0 = -c0, c1 = -c1, c2 = -c2;
+  c0 = c0 > 0.0f ? c0 : 0.0f, c1 = c1 > 0.0f ? c1 : 0.0f, c2 = c2 > 0.0f ? c2 : 0.0f;
+  const float s = (c0 + c1) + c2;
+  if (!(s > 0.0f)) {
+    l[0] = 1.0f, l[1] = 0.0f, l[2] = 0.0f;
+    return;
+  }
+  l[0] = c0 / s, l[1] = c1 / s, l[2] = c2 / s;
+}
+
+// Spheres and capsules are curved only with their margins, which EPA on cores leaves out.
+bool curved(const ConvexShape& s, bool core) {
+  return s.type == ConvexType::cylinder ||
+         (!core && (s.type == ConvexType::sphere || s.type == ConvexType::capsule) && s.radius > 0.0f);
+}
+
+}  // namespace
+
+EpaOutcome epa(const PairFrame& pair, const Simplex& start, uint32_t max_iterations) {
+  EpaOutcome out;
+  // One polytope per thread, reused: its 18 KB are never zeroed, and only what this call
+  // writes is read, so reuse cannot change a result.
+  thread_local Polytope p;
+  p.nv = p.nf = p.nh = 0;
+  // GJK's simplex; with 4 points it already encloses the origin.
+  for (int i = 0; i < start.n; ++i) p.vert[p.nv++] = start.p[i];
+  const float eps = 1e-6f * pair.scale;
+  vec3 flat_normal{0.0f, 1.0f, 0.0f};
+  if (!blow_up(p, pair, eps, flat_normal)) {
+    // No volume: the depth is 0 and the contact is GJK's closest point.
+    out.converged = out.flat = true;
+    out.normal = flat_normal;
+    for (int i = 0; i < start.n; ++i) out.point_a += start.p[i].a * start.lambda[i], out.point_b += start.p[i].b * start.lambda[i];
+    return out;
+  }
+  // Orient the tetrahedron so its faces point outwards.
+  const vec3 v0 = p.vert[0].w;
+  if (dot(p.vert[1].w - v0, cross(p.vert[2].w - v0, p.vert[3].w - v0)) < 0.0f) {
+    const SupportPoint t = p.vert[1];
+    p.vert[1] = p.vert[2], p.vert[2] = t;
+  }
+  p.add_face(0, 2, 1), p.add_face(0, 1, 3), p.add_face(0, 3, 2), p.add_face(1, 2, 3);
+  link(p, 0);
+
+  // Curved supports approach their surface only quadratically: ask less of them.
+  const float tol = (curved(*pair.a, pair.core) || curved(*pair.b, pair.core) ? 1e-4f : 1e-6f) * pair.scale;
+  int best = -1;
+  uint32_t it = 0;
+  for (;; ++it) {
+    best = -1;
+    for (int f = 0; f < p.nf; ++f)
+      if (!p.face[f].dead && !p.face[f].sliver && (best < 0 || p.face[f].d < p.face[best].d)) best = f;
+    if (best < 0) break;  // cannot happen: a closed polytope has a proper face
+    const Face& bf = p.face[best];
+    if (it >= max_iterations) break;
+    const SupportPoint s = pair.support(bf.n);
+    if (dot(s.w, bf.n) - bf.d <= tol) {
+      out.converged = true;
+      break;
+    }
+    bool repeat = false;
+    for (int i = 0; i < p.nv; ++i) repeat = repeat || (p.vert[i].w == s.w);
+    if (repeat) {  // nothing new in this direction: the face is on the boundary
+      out.converged = true;
+      break;
+    }
+    if (p.nv >= kMaxVerts || p.nf + 64 > kMaxFaces) break;
+    const int wi = p.nv;
+    p.vert[p.nv++] = s;
+    p.nh = 0;
+    Face& start_face = p.face[best];
+    start_face.dead = true;
+    for (int i = 0; i < 3; ++i) p.walk(start_face.adj[i], start_face.adj_edge[i], s.w);
+    if (p.nf + p.nh > kMaxFaces) break;
+    const int first = p.nf;
+    for (int h = 0; h < p.nh; ++h) {
+      Face& g = p.face[p.horizon_face[h]];
+      const int j = p.horizon_edge[h];
+      const int nfi = p.add_face(g.v[(j + 1) % 3], g.v[j], wi);
+      p.face[nfi].adj[0] = p.horizon_face[h], p.face[nfi].adj_edge[0] = j;
+      g.adj[j] = nfi, g.adj_edge[j] = 0;
+    }
+    // A horizon that is not one loop means rounding broke the surface: stop with the
+    // closest face of the last closed polytope (`best`, whose record is intact).
+    if (!link(p, first)) break;
+  }
+  out.iterations = it;
+  if (best < 0) {
+    // Degenerate beyond repair (every face a sliver): report the flat answer.
+    out.flat = true;
+    out.normal = flat_normal;
+    return out;
+  }
+  const Face& f = p.face[best];
+  float l[3];
+  const vec3 q = f.n * f.d;
+  barycentric(p.vert[f.v[0]].w, p.vert[f.v[1]].w, p.vert[f.v[2]].w, q, l);
+  for (int i = 0; i < 3; ++i) out.point_a += p.vert[f.v[i]].a * l[i], out.point_b += p.vert[f.v[i]].b * l[i];
+  out.normal = f.n;
+  out.depth = f.d > 0.0f ? f.d : 0.0f;  // the origin a rounding error outside: touching
+  return out;
+}
+
+}  // namespace gyro::detail
