@@ -34,7 +34,7 @@ extern "C" {
 
 /** ABI version this header describes: (major << 16) | minor. A library with the same
  *  major and a minor >= the header's is compatible. */
-#define GYRO_ABI_VERSION ((1u << 16) | 2u)
+#define GYRO_ABI_VERSION ((1u << 16) | 3u)
 
 /** The ABI version of the linked library; compare with GYRO_ABI_VERSION. */
 GYRO_API uint32_t gyro_abi_version(void);
@@ -52,7 +52,8 @@ enum {
   GYRO_FEATURE_GEOMETRY = 1u << 9,      /**< 3D primitives, batch tests and raycasts */
   GYRO_FEATURE_2D = 1u << 10,           /**< 2D primitives and the quadtree (C++ API) */
   GYRO_FEATURE_SPATIAL = 1u << 11,      /**< meshes, BVH, OBJ reader, camera, frustum culling */
-  GYRO_FEATURE_DYNAMICS = 1u << 12      /**< rigid bodies, contacts, the solver and the world (ABI 1.2) */
+  GYRO_FEATURE_DYNAMICS = 1u << 12,     /**< rigid bodies, contacts, the solver and the world (ABI 1.2) */
+  GYRO_FEATURE_SOFT_BODIES = 1u << 13   /**< springs, cloth, soft bodies and particle joints (ABI 1.3) */
 };
 GYRO_API uint32_t gyro_features(void);
 
@@ -643,6 +644,24 @@ typedef struct gyro_step_stats {
 GYRO_API gyro_status gyro_world_get_timings(const gyro_world* world, gyro_step_timings* out);
 GYRO_API gyro_status gyro_world_get_stats(const gyro_world* world, gyro_step_stats* out);
 
+/** Stages of a step, for gyro_world_get_stage_time (ABI 1.3). gyro_step_timings keeps its
+ *  ABI 1.2 layout; stages added later (soft bodies first) are read only through this call. */
+typedef uint32_t gyro_step_stage;
+enum {
+  GYRO_STAGE_FORCES = 0,
+  GYRO_STAGE_BROADPHASE = 1,
+  GYRO_STAGE_NARROWPHASE = 2,
+  GYRO_STAGE_ISLANDS = 3,
+  GYRO_STAGE_SOLVER = 4,
+  GYRO_STAGE_PARTICLES = 5,
+  GYRO_STAGE_TOTAL = 6,
+  GYRO_STAGE_SOFT_BODIES = 7 /**< springs, cloth and soft bodies (after the particles) */
+};
+
+/** Milliseconds the last step spent in one stage (0 for a skipped stage). Errors:
+ *  NULL_ARGUMENT, INVALID_ARGUMENT (an unknown stage: a newer stage on an older library). */
+GYRO_API gyro_status gyro_world_get_stage_time(const gyro_world* world, gyro_step_stage stage, double* out_ms);
+
 /** A pair of bodies that started or stopped touching (a < b in id order). */
 typedef struct gyro_contact_event {
   gyro_body_id a, b;
@@ -658,6 +677,228 @@ typedef struct gyro_contact_events {
 } gyro_contact_events;
 
 GYRO_API gyro_status gyro_world_get_contact_events(const gyro_world* world, gyro_contact_events* out);
+
+/* ------------------------------------------------------------------ springs, cloth and soft bodies (ABI 1.3) */
+
+/** Springs, cloth and soft bodies owned by a world (conventions of gyro/soft_body.hpp).
+ *  Present when gyro_features() has GYRO_FEATURE_SOFT_BODIES.
+ *  - A soft body is a network of particles (dense indices 0..count-1, fixed at creation)
+ *    joined by distance springs; every spring belongs to a family whose constants apply to
+ *    all its springs. The world steps its soft bodies after the particles (stage
+ *    GYRO_STAGE_SOFT_BODIES); each collides with every rigid body's shape at its current
+ *    pose (one way: cloth does not push bodies), so the world's bodies are the colliders.
+ *  - Two models: XPBD (default; stable for any stiffness and dt, stiffness may be +infinity)
+ *    and the book's explicit Hooke springs (unstable when a sub-step exceeds ~2 sqrt(m/k)).
+ *  - Pinned particles have inverse mass 0 and move only when gyro_soft_body_set_position
+ *    moves them.
+ *  - Particle indices are uint32_t; an index >= the particle count is INVALID_ARGUMENT.
+ *  - A stale id (destroyed, null, or of another world) is GYRO_STATUS_STALE_ID. Bad input
+ *    (NULL, NaN or infinite values, a wrong struct_size, an unknown enum value, a boolean
+ *    other than 0 or 1, a grid smaller than 2 x 2, stiffness <= 0 or NaN,
+ *    damping or mass out of range) gets a status and changes nothing: the world's state and
+ *    gyro_world_hash(), which covers the soft bodies, are as before the call.
+ *  - Bit-identical at every SIMD level and thread count; gyro_soft_body_hash() is the
+ *    witness of one body, gyro_world_hash() of the whole world. */
+
+/** A soft body's id; all-zero is null. */
+typedef struct gyro_soft_body_id {
+  uint32_t index;
+  uint32_t generation;
+} gyro_soft_body_id;
+
+typedef uint32_t gyro_soft_model;
+enum {
+  GYRO_SOFT_MODEL_XPBD = 0,   /**< constraints with compliance 1/k, sub-stepped (default) */
+  GYRO_SOFT_MODEL_SPRINGS = 1 /**< the book's explicit Hooke springs with damping */
+};
+
+typedef uint32_t gyro_spring_family;
+enum {
+  GYRO_SPRING_STRUCTURAL = 0, /**< grid neighbours along x and z; mesh edges; cube edges */
+  GYRO_SPRING_SHEAR = 1,      /**< grid cell diagonals; cube face diagonals */
+  GYRO_SPRING_BEND = 2,       /**< grid neighbours two apart; across mesh edges; cube body diagonals */
+  GYRO_SPRING_RADIAL = 3,     /**< mesh soft bodies: surface particles to the centre particle */
+  GYRO_SPRING_JOINT = 4       /**< particle joints */
+};
+
+typedef uint32_t gyro_collision_response;
+enum {
+  GYRO_COLLISION_PROJECTION = 0, /**< particles are moved out of colliders (default) */
+  GYRO_COLLISION_PENALTY = 1     /**< a penalty spring pushes particles out (soft bodies that squash) */
+};
+
+/** One family's constants. */
+typedef struct gyro_spring_constants {
+  float stiffness; /**< N/m, > 0; +INFINITY: inextensible (XPBD only) */
+  float damping;   /**< N s/m along the spring, >= 0 and finite */
+} gyro_spring_constants;
+
+/** How a soft body steps (gyro::SoftSettings). */
+typedef struct gyro_soft_settings {
+  uint32_t struct_size; /**< sizeof(gyro_soft_settings): set by gyro_soft_settings_default */
+  gyro_soft_model model;
+  uint32_t substeps;   /**< per step, 1..256 */
+  uint32_t iterations; /**< XPBD passes over the springs per sub-step, 1..64 */
+  gyro_vec3 gravity;   /**< the soft body's own gravity (not the world's) */
+  float damping;       /**< 1/s, >= 0: v *= 1 / (1 + h damping) per sub-step h */
+  float thickness;     /**< m kept between particles and collider surfaces, >= 0 */
+  float friction;      /**< Coulomb coefficient at collider contacts, in [0, 1] */
+  gyro_collision_response response;
+  float penalty_stiffness; /**< N/m per particle (penalty response), > 0 */
+} gyro_soft_settings;
+
+/** gyro::SoftSettings' defaults: XPBD, 16 sub-steps, 1 iteration, gravity (0, -9.81, 0),
+ *  thickness 1 cm, friction 0.3, projection. */
+GYRO_API gyro_soft_settings gyro_soft_settings_default(void);
+
+/** A grid cloth on the x-z plane: nx * nz particles over size_x * size_z metres, centred. */
+typedef struct gyro_cloth_def {
+  uint32_t struct_size; /**< sizeof(gyro_cloth_def): set by gyro_cloth_def_default */
+  int32_t nx, nz;       /**< particles along x and z, >= 2 each */
+  float size_x, size_z; /**< m, > 0 */
+  gyro_vec3 center;
+  float particle_mass;     /**< kg per particle, > 0 */
+  uint32_t both_diagonals; /**< 1: two shear springs per cell; 0: one, alternating by parity */
+  uint32_t bend;           /**< 1: bend springs between grid neighbours two apart */
+  gyro_spring_constants structural;
+  gyro_spring_constants shear;
+  gyro_spring_constants bend_constants;
+} gyro_cloth_def;
+
+/** gyro::ClothDef's defaults: 32 x 32 particles over 10 x 10 m at the origin, 1 kg each. */
+GYRO_API gyro_cloth_def gyro_cloth_def_default(void);
+
+/** The appendix's soft cube: 8 particles, 28 springs (edges: structural, face diagonals:
+ *  shear, body diagonals: bend). */
+typedef struct gyro_soft_cube_def {
+  uint32_t struct_size; /**< sizeof(gyro_soft_cube_def): set by gyro_soft_cube_def_default */
+  gyro_vec3 center;
+  float half_extent;   /**< m, > 0 */
+  float particle_mass; /**< kg per corner, > 0 */
+  gyro_spring_constants structural;
+  gyro_spring_constants shear;
+  gyro_spring_constants bend;
+} gyro_soft_cube_def;
+
+GYRO_API gyro_soft_cube_def gyro_soft_cube_def_default(void);
+
+/** A soft body from a closed triangle mesh: one particle per vertex (positions SoA, copied),
+ *  structural springs on the edges, bend springs across each edge, and radial springs from
+ *  every vertex to one extra particle at the vertices' centroid (particle vertex_count). */
+typedef struct gyro_soft_mesh_def {
+  uint32_t struct_size; /**< sizeof(gyro_soft_mesh_def): set by gyro_soft_mesh_def_default */
+  int32_t vertex_count; /**< >= 4 */
+  const float* x;
+  const float* y;
+  const float* z;
+  const uint32_t* indices; /**< three per triangle */
+  int32_t triangle_count;  /**< >= 4 */
+  float particle_mass;     /**< kg per particle (the centre too), > 0 */
+  gyro_spring_constants structural;
+  gyro_spring_constants bend;
+  gyro_spring_constants radial;
+} gyro_soft_mesh_def;
+
+GYRO_API gyro_soft_mesh_def gyro_soft_mesh_def_default(void);
+
+/** Builds a soft body and adds it to the world with default settings. Errors (*out
+ *  untouched, the world unchanged): NULL_ARGUMENT, INVALID_COUNT (a grid smaller than
+ *  2 x 2, negative nx or nz included; fewer than 4 mesh vertices or triangles; more than
+ *  2^24 particles), NON_FINITE, INVALID_ARGUMENT (struct_size, a boolean, size or mass <= 0,
+ *  stiffness <= 0, damping < 0, an index out of range, a triangle repeating a vertex, a
+ *  mesh that is not closed: every edge shared by exactly two triangles). */
+GYRO_API gyro_status gyro_world_create_cloth(gyro_world* world, const gyro_cloth_def* def, gyro_soft_body_id* out);
+GYRO_API gyro_status gyro_world_create_soft_cube(gyro_world* world, const gyro_soft_cube_def* def,
+                                                 gyro_soft_body_id* out);
+GYRO_API gyro_status gyro_world_create_soft_mesh(gyro_world* world, const gyro_soft_mesh_def* def,
+                                                 gyro_soft_body_id* out);
+/** The id becomes stale. */
+GYRO_API gyro_status gyro_world_destroy_soft_body(gyro_world* world, gyro_soft_body_id id);
+/** 1 if id names a live soft body of the world, else 0 (also for a NULL world). */
+GYRO_API uint32_t gyro_soft_body_is_valid(const gyro_world* world, gyro_soft_body_id id);
+GYRO_API gyro_status gyro_world_soft_body_count(const gyro_world* world, int32_t* out);
+
+/** Errors: INVALID_ARGUMENT (struct_size, model, response, substeps outside 1..256,
+ *  iterations outside 1..64, damping or thickness < 0, friction outside [0, 1],
+ *  penalty_stiffness <= 0), NON_FINITE. */
+GYRO_API gyro_status gyro_soft_body_set_settings(gyro_world* world, gyro_soft_body_id id,
+                                                 const gyro_soft_settings* settings);
+/** out->struct_size must be set (start from gyro_soft_settings_default()). */
+GYRO_API gyro_status gyro_soft_body_get_settings(const gyro_world* world, gyro_soft_body_id id,
+                                                 gyro_soft_settings* out);
+/** Constants of every spring of one family. Errors: INVALID_ARGUMENT (an unknown family,
+ *  stiffness <= 0, damping < 0), NON_FINITE (NaN stiffness or damping, infinite damping). */
+GYRO_API gyro_status gyro_soft_body_set_family(gyro_world* world, gyro_soft_body_id id, gyro_spring_family family,
+                                               const gyro_spring_constants* constants);
+GYRO_API gyro_status gyro_soft_body_get_family(const gyro_world* world, gyro_soft_body_id id,
+                                               gyro_spring_family family, gyro_spring_constants* out);
+
+/** Every particle's mass (kg, > 0 and finite); pinned particles stay pinned. */
+GYRO_API gyro_status gyro_soft_body_set_mass(gyro_world* world, gyro_soft_body_id id, float mass);
+GYRO_API gyro_status gyro_soft_body_set_particle_mass(gyro_world* world, gyro_soft_body_id id, uint32_t particle,
+                                                      float mass);
+/** Pinning sets the inverse mass to 0; unpinning restores the particle's mass. */
+GYRO_API gyro_status gyro_soft_body_pin(gyro_world* world, gyro_soft_body_id id, uint32_t particle);
+GYRO_API gyro_status gyro_soft_body_unpin(gyro_world* world, gyro_soft_body_id id, uint32_t particle);
+GYRO_API gyro_status gyro_soft_body_is_pinned(const gyro_world* world, gyro_soft_body_id id, uint32_t particle,
+                                              uint32_t* out);
+GYRO_API gyro_status gyro_soft_body_get_position(const gyro_world* world, gyro_soft_body_id id, uint32_t particle,
+                                                 gyro_vec3* out);
+/** Teleports the particle (how a pinned particle is moved); its velocity is kept. */
+GYRO_API gyro_status gyro_soft_body_set_position(gyro_world* world, gyro_soft_body_id id, uint32_t particle,
+                                                 gyro_vec3 position);
+GYRO_API gyro_status gyro_soft_body_get_velocity(const gyro_world* world, gyro_soft_body_id id, uint32_t particle,
+                                                 gyro_vec3* out);
+GYRO_API gyro_status gyro_soft_body_set_velocity(gyro_world* world, gyro_soft_body_id id, uint32_t particle,
+                                                 gyro_vec3 velocity);
+/** A cloth's particle at grid column ix (along x, < nx) and row iz (along z, < nz).
+ *  INVALID_ARGUMENT for a soft body that is not a cloth or a cell outside the grid. */
+GYRO_API gyro_status gyro_soft_body_cloth_index(const gyro_world* world, gyro_soft_body_id id, uint32_t ix,
+                                                uint32_t iz, uint32_t* out);
+
+/** Particle joints (chapter 16), springs of the family GYRO_SPRING_JOINT between two
+ *  different particles of one body. A distance joint keeps a and b rest_length apart
+ *  (finite; a negative rest_length takes their current distance); out_joint (may be NULL)
+ *  numbers it among the body's joints. */
+GYRO_API gyro_status gyro_soft_body_add_distance_joint(gyro_world* world, gyro_soft_body_id id, uint32_t a,
+                                                       uint32_t b, float rest_length, uint32_t* out_joint);
+/** A ball joint: a and b held together (a zero-length distance joint). */
+GYRO_API gyro_status gyro_soft_body_add_ball_joint(gyro_world* world, gyro_soft_body_id id, uint32_t a, uint32_t b);
+/** A hinge: (a0, b0) and (a1, b1) held together, so the parts turn about the line a0-a1
+ *  (a0 != a1, b0 != b1). */
+GYRO_API gyro_status gyro_soft_body_add_hinge_joint(gyro_world* world, gyro_soft_body_id id, uint32_t a0,
+                                                    uint32_t b0, uint32_t a1, uint32_t b1);
+
+/** Zero-copy read view of one soft body's particles (dense, 0..count-1) and its triangles
+ *  (three particle indices each; counter-clockwise seen from +y for a cloth). Valid until
+ *  the next gyro_world_step, change of the body, creation or destruction of a soft body, or
+ *  gyro_world_destroy; read only. */
+typedef struct gyro_soft_body_view {
+  int32_t count;
+  int32_t triangle_count;
+  const float *px, *py, *pz;
+  const float *vx, *vy, *vz;
+  const float* inverse_mass; /**< 0 for a pinned particle */
+  const uint32_t* triangles;
+} gyro_soft_body_view;
+
+GYRO_API gyro_status gyro_soft_body_get_view(const gyro_world* world, gyro_soft_body_id id, gyro_soft_body_view* out);
+
+/** Figures of the current state, computed on demand in double in a fixed order. */
+typedef struct gyro_soft_body_stats {
+  int32_t particles, springs;
+  int32_t colors;    /**< independent spring sets of the Gauss-Seidel pass */
+  uint32_t reserved; /**< 0 */
+  double max_strain; /**< max |len - rest| / rest over structural springs */
+  double mean_strain;
+  double kinetic_energy, potential_energy, elastic_energy; /**< J (gravity potential from y = 0) */
+  double min_y; /**< lowest particle */
+} gyro_soft_body_stats;
+
+GYRO_API gyro_status gyro_soft_body_get_stats(const gyro_world* world, gyro_soft_body_id id,
+                                              gyro_soft_body_stats* out);
+/** The 64-bit witness of one soft body (settings, families, particles, springs). */
+GYRO_API gyro_status gyro_soft_body_hash(const gyro_world* world, gyro_soft_body_id id, uint64_t* out);
 
 #ifdef __cplusplus
 }

@@ -66,7 +66,7 @@ GYRO_API uint32_t gyro_features(void) {
   f |= GYRO_FEATURE_SPATIAL;
 #endif
 #if defined(GYRO_HAS_DYNAMICS)
-  f |= GYRO_FEATURE_DYNAMICS;
+  f |= GYRO_FEATURE_DYNAMICS | GYRO_FEATURE_SOFT_BODIES;
 #endif
   return f;
 }

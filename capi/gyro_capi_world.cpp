@@ -10,6 +10,7 @@
 
 #include "capi_handles.hpp"
 #include "capi_support.hpp"
+#include "capi_world.hpp"
 #include "core/validate.hpp"
 #include "gyro/world.hpp"
 
@@ -19,13 +20,6 @@
 #include <map>
 #include <memory>
 #include <utility>
-
-/// The world and the mesh references its mesh bodies hold: gyro::ShapeDef::mesh is not owned,
-/// so the C layer keeps each mesh alive until its body (or the world) is destroyed.
-struct gyro_world {
-  std::unique_ptr<gyro::World> world;
-  std::map<std::pair<uint32_t, uint32_t>, std::shared_ptr<const gyro::TriangleMesh>> meshes;
-};
 
 namespace {
 

@@ -19,10 +19,13 @@
 //  - Collisions: the body's colliders (spheres, boxes, oriented boxes, planes, triangle
 //    meshes; in a World also every rigid body's shape) are tested per sub-step along each
 //    particle's segment from its sub-step start to its solved position, so particles do not
-//    tunnel at any speed; a particle ends `thickness` outside the surface, its tangential
-//    motion reduced by `friction`. Spheres, boxes and planes are solid (a particle inside is
-//    pushed out); a mesh is a two-sided surface. CollisionResponse::penalty replaces the
-//    projection by a penalty spring (penalty_stiffness, N/m per particle) for soft bodies.
+//    tunnel at any speed. Particles stay `thickness` outside surfaces (spheres, boxes and
+//    planes are inflated by it; they are solid: a particle inside is pushed out; a mesh is a
+//    two-sided surface). A contact stops the particle's motion into the surface (it never
+//    throws it back: no bounce, no energy gained) and applies position-based Coulomb
+//    friction: the sub-step's tangential motion is cancelled while it is under `friction`
+//    times the contact's correction, else shortened by that much. CollisionResponse::penalty
+//    replaces the projection by a penalty spring (penalty_stiffness, N/m per particle).
 //  - Cloth grids store each row in four blocks (columns i % 4 = 0, 1, 2, 3) so every spring
 //    family runs as unit-stride loads without gathers; cloth_index() maps (ix, iz) to the
 //    particle index, and triangles() already use particle indices.
@@ -86,7 +89,7 @@ struct SoftSettings {
   vec3 gravity{0.0f, -9.81f, 0.0f};
   float damping = 0.0f;     ///< 1/s, >= 0: v *= 1 / (1 + h damping) per sub-step h
   float thickness = 0.01f;  ///< m kept between particles and collider surfaces, >= 0
-  float friction = 0.3f;    ///< in [0, 1]: share of the tangential motion removed at a contact
+  float friction = 0.3f;    ///< Coulomb coefficient at collider contacts, in [0, 1]
   CollisionResponse response = CollisionResponse::projection;
   float penalty_stiffness = 1.0e4f;  ///< N/m per particle (penalty response), > 0
 };

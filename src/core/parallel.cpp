@@ -94,5 +94,46 @@ void parallel_for_chunks(std::size_t n, std::size_t chunk, ChunkFn fn, void* con
 #endif
 }
 
+void parallel_stages_erased(std::size_t stages, StageShapeFn shape, StageFn fn, void* context) {
+  const uint32_t threads = thread_count();
+  std::size_t widest = 0;
+  for (std::size_t s = 0; s < stages && widest < 2; ++s) {
+    std::size_t n = 0, chunk = 0;
+    shape(context, s, &n, &chunk);
+    if (chunk == 0) chunk = n ? n : 1;
+    const std::size_t chunks = (n + chunk - 1) / chunk;
+    widest = chunks > widest ? chunks : widest;
+  }
+  auto run_stage = [&](std::size_t s, std::size_t k, std::size_t n, std::size_t chunk) {
+    const std::size_t b = k * chunk;
+    fn(context, s, b, b + chunk < n ? b + chunk : n);
+  };
+  if (threads <= 1 || widest <= 1) {
+    FloatEnvGuard env;
+    for (std::size_t s = 0; s < stages; ++s) {
+      std::size_t n = 0, chunk = 0;
+      shape(context, s, &n, &chunk);
+      if (chunk == 0) chunk = n ? n : 1;
+      for (std::size_t k = 0; k * chunk < n; ++k) run_stage(s, k, n, chunk);
+    }
+    return;
+  }
+#if defined(GYRO_HAS_OPENMP)
+#pragma omp parallel num_threads(static_cast<int>(threads))
+  {
+    FloatEnvGuard env;
+    for (std::size_t s = 0; s < stages; ++s) {
+      std::size_t n = 0, chunk = 0;
+      shape(context, s, &n, &chunk);  // every thread asks: a function of s alone
+      if (chunk == 0) chunk = n ? n : 1;
+      const std::size_t chunks = (n + chunk - 1) / chunk;
+      // The implicit barrier at the end of each loop orders the stages.
+#pragma omp for schedule(dynamic, 1)  // detlint: allow (outputs are chunk-local)
+      for (std::size_t k = 0; k < chunks; ++k) run_stage(s, k, n, chunk);
+    }
+  }
+#endif
+}
+
 }  // namespace detail
 }  // namespace gyro

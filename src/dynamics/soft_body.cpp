@@ -107,6 +107,7 @@ struct SoftBody::Impl {
   // the world's colliders during step_with
   std::span<const Collider> world_shapes;
   std::span<const MeshCollider> world_meshes;
+  std::vector<Collider> shapes;  // this step's shapes (own and the world's), inflated by the thickness
 
   std::size_t count() const { return px.size(); }
   vec3 position(std::size_t i) const { return {px[i], py[i], pz[i]}; }
@@ -220,100 +221,126 @@ bool segment_meets(const vec3& lo, const vec3& hi, const vec3& s, const vec3& e,
 
 }  // namespace
 
+// Colliders are inflated by the thickness (spheres and boxes grow, planes move out), so a
+// particle resting on one is `thickness` from its true surface. Meshes are surfaces and keep
+// the thickness at the stop point instead.
+namespace {
+Collider inflated(const Collider& c, float t) {
+  Collider out = c;
+  switch (c.kind) {
+    case ColliderKind::sphere: out.sphere.radius = c.sphere.radius + t; break;
+    case ColliderKind::aabb: out.aabb.half_extents = c.aabb.half_extents + vec3{t, t, t}; break;
+    case ColliderKind::obb: out.obb.half_extents = c.obb.half_extents + vec3{t, t, t}; break;
+    case ColliderKind::plane: out.plane.distance = c.plane.distance + t; break;
+    default: break;
+  }
+  return out;
+}
+}  // namespace
+
 // Sweeps the particle from its sub-step start q to its solved position x through every
-// collider: at the first surface crossed it stops `thickness` outside, keeping (1 - friction)
-// of the tangential rest of its motion, and sweeps on (kMaxSweeps times; then it stays).
-// A particle that starts inside a solid is pushed out first, one that ends inside is pushed
-// out last. Penalty response instead pulls a particle inside a solid out by a spring.
+// collider: at the first surface crossed it stops just outside and sweeps on with the
+// tangential rest of its motion (kMaxSweeps times; then it stays). A particle that starts
+// inside a solid is pushed out first, one that ends inside is pushed out last. Then
+// position-based Coulomb friction: the tangential motion of the sub-step is cancelled while
+// it is under friction times the normal correction, else shortened by that much. The start
+// position is moved so the velocity the sub-step ends with has no normal part: a contact
+// stops a particle, it never throws it (no energy from the correction). Penalty response
+// instead pulls a particle inside a solid out by a spring.
 void SoftBody::Impl::collide(std::size_t i, float h) {
   if (!(w[i] > 0.0f)) return;
   const float thk = settings.thickness;
-  const float keep = 1.0f - settings.friction;
-  vec3 s{qx[i], qy[i], qz[i]};
+  const float mu = settings.friction;
+  const vec3 q{qx[i], qy[i], qz[i]};
+  vec3 s = q;
   vec3 e = position(i);
   const vec3 e0 = e;
-  auto each_shape = [&](auto&& fn) {
-    for (const SoftCollider& c : colliders)
-      if (c.shape.kind != ColliderKind::none) fn(c.shape);
-    for (const Collider& c : world_shapes) fn(c);
+  auto near = [&](const Collider& c, const vec3& a, const vec3& b) {
+    vec3 lo, hi;
+    return !detail::collider_bounds(c, &lo, &hi) || segment_meets(lo, hi, a, b, detail::skin_at(a));
   };
   auto each_mesh = [&](auto&& fn) {
     for (const SoftCollider& c : colliders)
       if (c.mesh.mesh) fn(c.mesh);
     for (const MeshCollider& m : world_meshes) fn(m);
   };
-  auto near = [&](const Collider& c, const vec3& a, const vec3& b) {
-    vec3 lo, hi;
-    return !detail::collider_bounds(c, &lo, &hi) || segment_meets(lo, hi, a, b, thk + detail::skin_at(a));
-  };
 
   if (settings.response == CollisionResponse::penalty) {
     vec3 push{};
-    each_shape([&](const Collider& c) {
-      if (!near(c, e, e)) return;
-      const vec3 out = detail::push_out(c, e, thk);
-      push = push + (out - e);
-    });
+    for (const Collider& c : shapes) {
+      if (!near(c, e, e)) continue;
+      push = push + (detail::push_out(c, e) - e);
+    }
     if (push == vec3{}) return;
     if (settings.model == SoftModel::xpbd) {
       const float f = settings.penalty_stiffness * h * h * w[i];
       e = e + push * (f < 1.0f ? f : 1.0f);
+      px[i] = e.x, py[i] = e.y, pz[i] = e.z;
     } else {
       const vec3 dv = push * (settings.penalty_stiffness * h * w[i]);
       vx[i] += dv.x, vy[i] += dv.y, vz[i] += dv.z;
-      return;
     }
-    px[i] = e.x, py[i] = e.y, pz[i] = e.z;
     return;
   }
 
-  vec3 last_normal{};
+  vec3 normal_sum{};
   bool touched = false;
-  each_shape([&](const Collider& c) {
-    if (!near(c, s, s)) return;
-    const vec3 out = detail::push_out(c, s, thk);
-    if (!(out == s)) e = e + (out - s), s = out;
-  });
+  for (const Collider& c : shapes) {
+    if (!near(c, s, s)) continue;
+    vec3 n;
+    const vec3 out = detail::push_out(c, s, 0.0f, &n);
+    if (!(out == s)) e = e + (out - s), s = out, touched = true, normal_sum = normal_sum + n;
+  }
   for (int sweep = 0; sweep < kMaxSweeps; ++sweep) {
     const vec3 d = e - s;
-    float best_t = 2.0f;
+    float best_t = 2.0f, gap = 0.0f;
     vec3 point, normal;
-    each_shape([&](const Collider& c) {
-      if (!near(c, s, e)) return;
+    for (const Collider& c : shapes) {
+      if (!near(c, s, e)) continue;
       float t;
       vec3 p, n;
-      if (detail::first_hit(c, s, d, &t, &p, &n) && t < best_t) best_t = t, point = p, normal = n;
-    });
+      if (detail::first_hit(c, s, d, &t, &p, &n) && t < best_t) best_t = t, point = p, normal = n, gap = 0.0f;
+    }
     each_mesh([&](const MeshCollider& m) {
       float t;
       vec3 p, n;
-      if (first_hit_mesh(m, s, d, &t, &p, &n) && t < best_t) best_t = t, point = p, normal = n;
+      if (first_hit_mesh(m, s, d, &t, &p, &n) && t < best_t) best_t = t, point = p, normal = n, gap = thk;
     });
     if (best_t > 1.0f) break;
-    touched = true, last_normal = normal;
-    const vec3 stop = point + normal * (thk + detail::skin_at(point));
+    touched = true, normal_sum = normal_sum + normal;
+    const vec3 stop = point + normal * (gap + detail::skin_at(point));
     const vec3 rest_motion = e - point;
-    const vec3 tangential = rest_motion - normal * dot(rest_motion, normal);
     s = stop;
-    e = sweep + 1 < kMaxSweeps ? stop + tangential * keep : stop;
+    e = sweep + 1 < kMaxSweeps ? stop + (rest_motion - normal * dot(rest_motion, normal)) : stop;
   }
-  each_shape([&](const Collider& c) {
-    if (!near(c, e, e)) return;
+  for (const Collider& c : shapes) {
+    if (!near(c, e, e)) continue;
     vec3 n;
-    const vec3 out = detail::push_out(c, e, thk, &n);
-    if (!(out == e)) e = out, touched = true, last_normal = n;
-  });
-  if (!touched || e == e0) return;
+    const vec3 out = detail::push_out(c, e, 0.0f, &n);
+    if (!(out == e)) e = out, touched = true, normal_sum = normal_sum + n;
+  }
+  if (!touched) return;
+  const float nlen = length(normal_sum);
+  const vec3 n = nlen > 0.0f ? normal_sum / nlen : vec3{0.0f, 1.0f, 0.0f};
+  const float correction = dot(e - e0, n);  // how far the contacts pushed, along n
+  const vec3 d = e - q;
+  const vec3 dt = d - n * dot(d, n);
+  const float lt = length(dt);
+  const float limit = mu * (correction > 0.0f ? correction : 0.0f);
+  const vec3 removed = lt <= limit ? dt : dt * (limit / lt);
+  e = e - removed;
   px[i] = e.x, py[i] = e.y, pz[i] = e.z;
-  if (settings.model == SoftModel::springs) {
-    // The velocity loses its part into the surface and (1 - friction) of the rest.
+  const vec3 slide = dt - removed;  // the tangential motion the sub-step keeps
+  if (settings.model == SoftModel::xpbd) {
+    const vec3 start = e - slide;  // so (x - q) / h is the slide alone
+    qx[i] = start.x, qy[i] = start.y, qz[i] = start.z;
+  } else {
     const vec3 v{vx[i], vy[i], vz[i]};
-    const float vn = dot(v, last_normal);
-    if (vn < 0.0f) {
-      const vec3 v_n = last_normal * vn;
-      const vec3 out = (v - v_n) * keep;
-      vx[i] = out.x, vy[i] = out.y, vz[i] = out.z;
-    }
+    const float vn = dot(v, n);
+    const vec3 vt = v - n * vn;
+    const float lv = length(vt), lim = limit / h;
+    const vec3 v_out = (lv <= lim ? vec3{} : vt * (1.0f - lim / lv)) + n * (vn > 0.0f ? vn : 0.0f);
+    vx[i] = v_out.x, vy[i] = v_out.y, vz[i] = v_out.z;
   }
 }
 
@@ -349,24 +376,59 @@ Status SoftBody::Impl::step(float dt) {
   auto* predict = GYRO_DISPATCH(soft_predict);
   auto* update_velocity = GYRO_DISPATCH(soft_update_velocity);
   auto* spring_pass = xpbd ? GYRO_DISPATCH(soft_xpbd_runs) : GYRO_DISPATCH(soft_spring_runs);
-  const bool collide_any = live_colliders != 0 || !world_shapes.empty() || !world_meshes.empty();
+  shapes.clear();
+  for (const SoftCollider& c : colliders)
+    if (c.shape.kind != ColliderKind::none) shapes.push_back(inflated(c.shape, settings.thickness));
+  for (const Collider& c : world_shapes) shapes.push_back(inflated(c, settings.thickness));
+  const bool collide_any = !shapes.empty() || !world_meshes.empty() ||
+                           std::any_of(colliders.begin(), colliders.end(), [](const SoftCollider& c) { return c.mesh.mesh != nullptr; });
   const detail::SpringRun* runs = plan.runs.data();
 
-  for (uint32_t sub = 0; sub < substeps; ++sub) {
-    detail::parallel_for(n, kParticleChunk, [&](std::size_t b, std::size_t e) { predict(g, b, e); });
-    if (g.accumulate) std::fill(olambda.begin(), olambda.end(), 0.0f);
-    for (uint32_t it = 0; it < iterations; ++it) {
-      for (std::size_t c = 0; c < plan.colors(); ++c) {
-        const std::size_t r0 = plan.color_runs[c], r1 = plan.color_runs[c + 1];
-        detail::parallel_for(r1 - r0, color_chunk[c], [&](std::size_t b, std::size_t e) { spring_pass(g, runs, r0 + b, r0 + e); });
-      }
+  // One parallel region for the whole step: per sub-step the stages below, a barrier
+  // between stages (colours depend on each other, the passes on the colours).
+  const std::size_t colors = plan.colors();
+  enum Stage : uint32_t { predict_stage, reset_stage, color_stage, collide_stage, velocity_stage };
+  const std::size_t per_sub = 1 + (g.accumulate ? 1 : 0) + iterations * colors + (collide_any ? 1 : 0) + (xpbd ? 1 : 0);
+  auto decode = [&](std::size_t stage, std::size_t* color) -> Stage {
+    std::size_t r = stage % per_sub;
+    if (r == 0) return predict_stage;
+    r -= 1;
+    if (g.accumulate) {
+      if (r == 0) return reset_stage;
+      r -= 1;
     }
-    if (collide_any)
-      detail::parallel_for(n, kCollideChunk, [&](std::size_t b, std::size_t e) {
-        for (std::size_t i = b; i < e; ++i) collide(i, h);
+    if (r < iterations * colors) {
+      *color = r % colors;
+      return color_stage;
+    }
+    r -= iterations * colors;
+    if (collide_any && r == 0) return collide_stage;
+    return velocity_stage;
+  };
+  detail::parallel_stages(
+      substeps * per_sub,
+      [&](std::size_t stage, std::size_t* count, std::size_t* chunk) {
+        std::size_t c = 0;
+        switch (decode(stage, &c)) {
+          case predict_stage:
+          case velocity_stage: *count = n, *chunk = kParticleChunk; break;
+          case reset_stage: *count = olambda.size(), *chunk = kSpringChunk; break;
+          case color_stage: *count = plan.color_runs[c + 1] - plan.color_runs[c], *chunk = color_chunk[c]; break;
+          case collide_stage: *count = n, *chunk = kCollideChunk; break;
+        }
+      },
+      [&](std::size_t stage, std::size_t b, std::size_t e) {
+        std::size_t c = 0;
+        switch (decode(stage, &c)) {
+          case predict_stage: predict(g, b, e); break;
+          case reset_stage: std::fill(olambda.begin() + b, olambda.begin() + e, 0.0f); break;
+          case color_stage: spring_pass(g, runs, plan.color_runs[c] + b, plan.color_runs[c] + e); break;
+          case collide_stage:
+            for (std::size_t i = b; i < e; ++i) collide(i, h);
+            break;
+          case velocity_stage: update_velocity(g, b, e); break;
+        }
       });
-    if (xpbd) detail::parallel_for(n, kParticleChunk, [&](std::size_t b, std::size_t e) { update_velocity(g, b, e); });
-  }
   return Status::ok;
 }
 
