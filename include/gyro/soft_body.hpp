@@ -132,6 +132,26 @@ struct SoftMeshDef {
   SpringConstants radial{1.0e3f, 0.0f};
 };
 
+/// One spring of a general body; rest_length < 0 takes the particles' distance at creation.
+struct SoftSpringDef {
+  uint32_t a = 0, b = 0;
+  SpringFamily family = SpringFamily::structural;
+  float rest_length = -1.0f;
+};
+
+/// Any network of particles and springs (a single spring between two particles, a rope, a
+/// lattice): the per-particle interface the book's cloth lacks.
+struct SoftBodyDef {
+  const vec3* positions = nullptr;   ///< particle_count positions
+  const float* masses = nullptr;     ///< particle_count masses (kg, > 0); null: 1 kg each
+  const uint8_t* pinned = nullptr;   ///< particle_count flags (non-zero: pinned); null: none
+  uint32_t particle_count = 0;       ///< >= 1
+  const SoftSpringDef* springs = nullptr;
+  uint32_t spring_count = 0;
+  const uint32_t* triangles = nullptr;  ///< three particle indices each, for rendering (optional)
+  uint32_t triangle_count = 0;
+};
+
 /// A distance joint (chapter 16) between two particles of one body; rest_length < 0 takes
 /// their current distance, 0 makes a ball joint (the two particles coincide).
 struct ParticleJointDef {
@@ -169,6 +189,7 @@ class SoftBody {
   SoftBody& operator=(SoftBody&&) noexcept;
 
   /// Builders: replace *out's particles and springs (its settings and colliders stay).
+  static Status make(const SoftBodyDef& def, SoftBody* out);
   static Status make_cloth(const ClothDef& def, SoftBody* out);
   static Status make_cube(const SoftCubeDef& def, SoftBody* out);
   static Status make_from_mesh(const SoftMeshDef& def, SoftBody* out);

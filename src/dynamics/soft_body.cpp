@@ -16,6 +16,7 @@
 #include "dynamics/soft_plan.hpp"
 #include "dynamics/soft_solver.hpp"
 #include "gyro/raycast.hpp"
+#include "gyro/triangle.hpp"
 #include "gyro/triangle_mesh.hpp"
 
 #include <algorithm>
@@ -32,9 +33,12 @@ using detail::fail;
 using detail::is_finite;
 using detail::MeshCollider;
 
-constexpr std::size_t kParticleChunk = 2048;  // particles per parallel chunk (fixed: results do not depend on threads)
-constexpr std::size_t kCollideChunk = 256;    // particles per chunk of the collision pass (costlier per particle)
-constexpr std::size_t kSpringChunk = 4096;    // springs per parallel chunk of a colour (rounded to whole runs)
+// Parallel chunks (fixed: results do not depend on threads). Large, because a step is a
+// chain of dependent stages with a barrier each: a stage is only worth splitting when each
+// thread gets tens of microseconds of work (a 256 x 256 cloth, not a 64 x 64 one).
+constexpr std::size_t kParticleChunk = 8192;  // particles per chunk of the predict and velocity passes
+constexpr std::size_t kCollideChunk = 1024;   // particles per chunk of the collision pass (costlier per particle)
+constexpr std::size_t kSpringChunk = 8192;    // springs per chunk of a colour (rounded to whole runs)
 constexpr uint32_t kMaxSubsteps = 256, kMaxIterations = 64;
 constexpr int kMaxSweeps = 3;                 // swept collisions per particle and sub-step
 
@@ -200,14 +204,19 @@ namespace {
 
 /// The first entering crossing of s -> s + d with a placed mesh (either side: a mesh is a
 /// surface), with the normal facing s.
-bool first_hit_mesh(const MeshCollider& m, const vec3& s, const vec3& d, float* t, vec3* point, vec3* normal) {
+/// The first crossing of s -> s + d with a placed mesh (either side: a mesh is a surface)
+/// within `reach` beyond the segment's end (a particle coming within the thickness of the
+/// surface touches it), with the normal facing s; t in units of |d| may exceed 1.
+bool first_hit_mesh(const MeshCollider& m, const vec3& s, const vec3& d, float reach, float* t, vec3* point, vec3* normal) {
+  const float len = length(d);
+  if (!(len > 0.0f)) return false;
   const quat inv = conjugate(m.orientation);
-  const Ray local{rotate(inv, s - m.position), rotate(inv, d)};
-  const MeshHit hit = raycast(*m.mesh, local, 0.0f, 1.0f);
+  const Ray local{rotate(inv, s - m.position), rotate(inv, d / len)};
+  const MeshHit hit = raycast(*m.mesh, local, 0.0f, len + reach);
   if (!hit.hit.hit) return false;
   vec3 n = rotate(m.orientation, hit.hit.normal);
   if (dot(n, d) > 0.0f) n = -n;
-  *t = hit.hit.t, *point = s + d * hit.hit.t, *normal = n;
+  *t = hit.hit.t / len, *point = s + d * (hit.hit.t / len), *normal = n;
   return true;
 }
 
@@ -257,7 +266,7 @@ void SoftBody::Impl::collide(std::size_t i, float h) {
   const vec3 e0 = e;
   auto near = [&](const Collider& c, const vec3& a, const vec3& b) {
     vec3 lo, hi;
-    return !detail::collider_bounds(c, &lo, &hi) || segment_meets(lo, hi, a, b, detail::skin_at(a));
+    return !detail::collider_bounds(c, &lo, &hi) || segment_meets(lo, hi, a, b, detail::skin_at(a) + 2.0f * detail::kSkin);
   };
   auto each_mesh = [&](auto&& fn) {
     for (const SoftCollider& c : colliders)
@@ -304,21 +313,47 @@ void SoftBody::Impl::collide(std::size_t i, float h) {
     each_mesh([&](const MeshCollider& m) {
       float t;
       vec3 p, n;
-      if (first_hit_mesh(m, s, d, &t, &p, &n) && t < best_t) best_t = t, point = p, normal = n, gap = thk;
+      if (first_hit_mesh(m, s, d, thk + detail::skin_at(s), &t, &p, &n) && t < best_t) best_t = t, point = p, normal = n, gap = thk;
     });
-    if (best_t > 1.0f) break;
+    if (best_t == 2.0f) break;
     touched = true, normal_sum = normal_sum + normal;
     const vec3 stop = point + normal * (gap + detail::skin_at(point));
     const vec3 rest_motion = e - point;
     s = stop;
     e = sweep + 1 < kMaxSweeps ? stop + (rest_motion - normal * dot(rest_motion, normal)) : stop;
   }
+  // A particle that ends within two skins of a surface rests on it: it is held one skin
+  // out, inside that band, with its normal motion stopped, so the next sub-step finds it in
+  // the band again; otherwise it would fall through the band for a few sub-steps and be
+  // stopped with a jolt (velocity noise at rest).
   for (const Collider& c : shapes) {
     if (!near(c, e, e)) continue;
     vec3 n;
-    const vec3 out = detail::push_out(c, e, 0.0f, &n);
+    const vec3 out = detail::push_out(inflated(c, 2.0f * detail::kSkin), e, -detail::kSkin, &n);
     if (!(out == e)) e = out, touched = true, normal_sum = normal_sum + n;
   }
+  // Meshes have no inside to push out of: a particle within the thickness of a triangle is
+  // moved out along the line from the closest point, on the side it is on.
+  each_mesh([&](const MeshCollider& m) {
+    const quat inv = conjugate(m.orientation);
+    const vec3 local = rotate(inv, e - m.position);
+    const float reach = thk + 2.0f * detail::skin_at(e);
+    uint32_t near_tris[16];
+    const std::size_t found = m.mesh->triangles_overlapping(AABB{local, vec3{reach, reach, reach}}, near_tris, 16);
+    float best = reach;
+    vec3 away{};
+    for (std::size_t k = 0; k < (found < 16 ? found : 16); ++k) {
+      const vec3 cp = closest_point(m.mesh->triangle(near_tris[k]), local);
+      const vec3 off = local - cp;
+      const float dist = length(off);
+      if (dist < best && dist > 0.0f) best = dist, away = off / dist;
+    }
+    if (best < reach) {
+      const vec3 n = rotate(m.orientation, away);
+      e = e + n * (thk + detail::skin_at(e) - best);
+      touched = true, normal_sum = normal_sum + n;
+    }
+  });
   if (!touched) return;
   const float nlen = length(normal_sum);
   const vec3 n = nlen > 0.0f ? normal_sum / nlen : vec3{0.0f, 1.0f, 0.0f};
@@ -481,6 +516,47 @@ Status assign(SoftBody* out, SoftBody::Impl& impl, const Network& net, const Spr
 }
 
 }  // namespace
+
+Status SoftBody::make(const SoftBodyDef& def, SoftBody* out) {
+  GYRO_TRY(detail::require_not_null(out, "out"));
+  GYRO_TRY(detail::require_not_null(def.positions, "positions"));
+  if (def.particle_count < 1 || def.particle_count > (1u << 26))
+    return fail(Status::invalid_count, "soft body particle_count %u is outside 1..2^26", def.particle_count);
+  if (def.spring_count && !def.springs) return fail(Status::null_argument, "springs is null");
+  if (def.triangle_count && !def.triangles) return fail(Status::null_argument, "triangles is null");
+  const uint32_t n = def.particle_count;
+  Network net;
+  net.positions.assign(def.positions, def.positions + n);
+  net.masses.assign(n, 1.0f);
+  for (uint32_t i = 0; i < n; ++i) {
+    if (!gyro::is_finite(net.positions[i])) return fail(Status::non_finite, "particle %u position is not finite", i);
+    if (def.masses) {
+      GYRO_TRY(check_mass(def.masses[i], "particle mass"));
+      net.masses[i] = def.masses[i];
+    }
+  }
+  std::vector<float> rest(def.spring_count);
+  for (uint32_t k = 0; k < def.spring_count; ++k) {
+    const SoftSpringDef& sp = def.springs[k];
+    if (sp.a >= n || sp.b >= n) return fail(Status::invalid_argument, "spring %u names a particle past %u", k, n);
+    if (sp.a == sp.b) return fail(Status::invalid_argument, "spring %u joins particle %u to itself", k, sp.a);
+    if (static_cast<uint32_t>(sp.family) >= kSpringFamilyCount) return fail(Status::invalid_argument, "spring %u has an unknown family", k);
+    if (std::isnan(sp.rest_length) || std::isinf(sp.rest_length)) return fail(Status::non_finite, "spring %u rest_length is not finite", k);
+    net.spring(sp.a, sp.b, sp.family);
+    rest[k] = sp.rest_length;
+  }
+  for (uint32_t t = 0; t < def.triangle_count * 3u; ++t)
+    if (def.triangles[t] >= n) return fail(Status::invalid_argument, "triangle %u names a particle past %u", t / 3, n);
+  net.triangles.assign(def.triangles, def.triangles + std::size_t{def.triangle_count} * 3);
+  Impl& m = *out->impl_;
+  m.load(net);
+  for (uint32_t k = 0; k < def.spring_count; ++k)
+    if (rest[k] >= 0.0f) m.rest[k] = rest[k];
+  if (def.pinned)
+    for (uint32_t i = 0; i < n; ++i)
+      if (def.pinned[i]) m.pinned[i] = 1, m.w[i] = 0.0f;
+  return Status::ok;
+}
 
 Status SoftBody::make_cloth(const ClothDef& def, SoftBody* out) {
   GYRO_TRY(detail::require_not_null(out, "out"));

@@ -16,6 +16,9 @@
 #include "core/error.hpp"
 #include "core/validate.hpp"
 #include "geometry/convex_support.hpp"
+#include "geometry/gjk_batch.hpp"
+
+#include <bit>
 
 namespace gyro {
 namespace detail {
@@ -25,6 +28,16 @@ inline float absf(float x) { return x < 0.0f ? -x : x; }
 inline bool same_sign(float a, float b) { return (a > 0.0f && b > 0.0f) || (a < 0.0f && b < 0.0f); }
 
 // ---- the signed-volume subalgorithm (closest point of a simplex to the origin) ----
+//
+// The vertices are addressed by index into the caller's array; the result lists the indices
+// it keeps, ascending, so the caller compacts its simplex in place.
+
+// The simplex as the subalgorithm sees it: vertex i is *p[i] (the points stay in fixed
+// slots; only this order changes).
+struct SimplexView {
+  const vec3* p[4];
+  const vec3& operator[](int i) const { return *p[i]; }
+};
 
 struct Sub {
   int idx[4];
@@ -34,34 +47,65 @@ struct Sub {
   float vv = 0.0f;
 };
 
-Sub vertex(const vec3* s, int i) {
-  Sub r;
+inline void vertex(const SimplexView& s, int i, Sub& r) {
   r.n = 1, r.idx[0] = i, r.lambda[0] = 1.0f, r.v = s[i], r.vv = dot(s[i], s[i]);
-  return r;
 }
 
 // Segment s[i0] s[i1].
-Sub s1d(const vec3* s, int i0, int i1) {
+inline void s1d(const SimplexView& s, int i0, int i1, Sub& r) {
   const vec3 t = s[i1] - s[i0];
   const float a0 = dot(s[i0], t), a1 = dot(s[i1], t);
   // The origin projects before s[i0] (or the segment is a point), or beyond s[i1].
-  if (!(a0 < 0.0f)) return vertex(s, i0);
-  if (!(a1 > 0.0f)) return vertex(s, i1);
+  if (!(a0 < 0.0f)) return vertex(s, i0, r);
+  if (!(a1 > 0.0f)) return vertex(s, i1, r);
   const float den = a1 - a0;  // = |t|^2, but consistent with a0, a1 so the weights sum to 1
-  Sub r;
   r.n = 2, r.idx[0] = i0, r.idx[1] = i1;
   r.lambda[0] = a1 / den, r.lambda[1] = -a0 / den;
   r.v = s[i0] * r.lambda[0] + s[i1] * r.lambda[1];
   r.vv = dot(r.v, r.v);
-  return r;
 }
 
-inline void keep_closer(Sub& best, const Sub& c) {
-  if (best.n == 0 || c.vv < best.vv) best = c;
+// Edge (i0, i1) as a candidate: kept when nothing is kept yet or it is strictly closer.
+inline void edge_candidate(const SimplexView& s, int i0, int i1, Sub& best) {
+  if (best.n == 0) return s1d(s, i0, i1, best);
+  Sub c;
+  s1d(s, i0, i1, c);
+  if (c.vv < best.vv) best = c;
+}
+
+template <int I> inline float comp(const vec3& v) {
+  if constexpr (I == 0) return v.x;
+  else if constexpr (I == 1) return v.y;
+  else return v.z;
+}
+
+// The triangle's signed areas on the coordinate plane normal to axis K (K: the largest
+// component of the normal n); false when the origin's projection is outside an edge.
+template <int K>
+inline bool s2d_inside(const SimplexView& s, const int id[3], const vec3& n, float nn, float c[3], float& total, Sub& r) {
+  constexpr int u = (K + 1) % 3, w = (K + 2) % 3;
+  const vec3 p = n * (dot(n, s[id[0]]) / nn);  // origin projected on the plane
+  total = comp<K>(n);
+  const float pu = comp<u>(p), pw = comp<w>(p);
+  for (int j = 0; j < 3; ++j) {
+    const vec3& b = s[id[j == 2 ? 0 : j + 1]];
+    const vec3& e = s[id[j == 0 ? 2 : j - 1]];
+    // Twice the signed area of (p, b, e) in the (u, w) plane: p takes vertex j's place.
+    c[j] = (comp<u>(b) - pu) * (comp<w>(e) - pw) - (comp<w>(b) - pw) * (comp<u>(e) - pu);
+  }
+  if (same_sign(c[0], total) && same_sign(c[1], total) && same_sign(c[2], total)) {
+    const float sum = (c[0] + c[1]) + c[2];
+    r.n = 3;
+    for (int j = 0; j < 3; ++j) r.idx[j] = id[j], r.lambda[j] = c[j] / sum;
+    r.v = p;
+    r.vv = dot(p, p);
+    return true;
+  }
+  return false;
 }
 
 // Triangle s[i0] s[i1] s[i2].
-Sub s2d(const vec3* s, int i0, int i1, int i2) {
+inline void s2d(const SimplexView& s, int i0, int i1, int i2, Sub& r) {
   const vec3 n = cross(s[i1] - s[i0], s[i2] - s[i0]);
   const float nn = dot(n, n);
   const int id[3] = {i0, i1, i2};
@@ -70,66 +114,96 @@ Sub s2d(const vec3* s, int i0, int i1, int i2) {
     // Project on the coordinate plane where the triangle's shadow is largest; there the
     // signed areas of (origin's projection, edge) are best conditioned.
     const float ax = absf(n.x), ay = absf(n.y), az = absf(n.z);
-    const int k = (ax >= ay && ax >= az) ? 0 : (ay >= az ? 1 : 2);
-    const int u = (k + 1) % 3, w = (k + 2) % 3;
-    const vec3 p = n * (dot(n, s[i0]) / nn);  // origin projected on the plane
-    total = n[k];
-    for (int j = 0; j < 3; ++j) {
-      const vec3& b = s[id[(j + 1) % 3]];
-      const vec3& e = s[id[(j + 2) % 3]];
-      // Twice the signed area of (p, b, e) in the (u, w) plane: p takes vertex j's place.
-      c[j] = (b[u] - p[u]) * (e[w] - p[w]) - (b[w] - p[w]) * (e[u] - p[u]);
-    }
-    if (same_sign(c[0], total) && same_sign(c[1], total) && same_sign(c[2], total)) {
-      const float sum = (c[0] + c[1]) + c[2];
-      Sub r;
-      r.n = 3;
-      for (int j = 0; j < 3; ++j) r.idx[j] = id[j], r.lambda[j] = c[j] / sum;
-      r.v = p;
-      r.vv = dot(p, p);
-      return r;
-    }
+    bool inside;
+    if (ax >= ay && ax >= az) inside = s2d_inside<0>(s, id, n, nn, c, total, r);
+    else if (ay >= az) inside = s2d_inside<1>(s, id, n, nn, c, total, r);
+    else inside = s2d_inside<2>(s, id, n, nn, c, total, r);
+    if (inside) return;
   }
   // Outside an edge (or a degenerate triangle): the closest point is on an edge facing the
-  // origin. Edge j is the one opposite vertex j.
-  Sub best;
-  for (int j = 0; j < 3; ++j)
-    if (!same_sign(c[j], total)) keep_closer(best, s1d(s, id[(j + 1) % 3], id[(j + 2) % 3]));
-  return best;
+  // origin. Edge j is the one opposite vertex j; the first facing edge is taken, a later
+  // one only when strictly closer.
+  r.n = 0;
+  if (!same_sign(c[0], total)) edge_candidate(s, i1, i2, r);
+  if (!same_sign(c[1], total)) edge_candidate(s, i2, i0, r);
+  if (!same_sign(c[2], total)) edge_candidate(s, i0, i1, r);
+}
+
+inline void face_candidate(const SimplexView& s, int i0, int i1, int i2, Sub& best) {
+  if (best.n == 0) return s2d(s, i0, i1, i2, best);
+  Sub c;
+  s2d(s, i0, i1, i2, c);
+  if (c.vv < best.vv) best = c;
 }
 
 inline float triple(const vec3& a, const vec3& b, const vec3& c) { return dot(a, cross(b, c)); }
 
 // Tetrahedron s[0..3]: n == 4 in the result means the origin is inside (v = 0).
-Sub s3d(const vec3* s) {
+inline void s3d(const SimplexView& s, Sub& r) {
   // Six times the signed volumes with the origin in place of vertex j; they sum to the
   // volume of the tetrahedron.
   const float c[4] = {triple(s[1], s[2], s[3]), -triple(s[0], s[2], s[3]), triple(s[0], s[1], s[3]),
                       -triple(s[0], s[1], s[2])};
   const float total = ((c[0] + c[1]) + c[2]) + c[3];
   if (same_sign(c[0], total) && same_sign(c[1], total) && same_sign(c[2], total) && same_sign(c[3], total)) {
-    Sub r;
     r.n = 4;
     for (int j = 0; j < 4; ++j) r.idx[j] = j, r.lambda[j] = c[j] / total;
     r.v = {};
     r.vv = 0.0f;
-    return r;
+    return;
   }
-  static constexpr int kFace[4][3] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
-  Sub best;
-  for (int j = 0; j < 4; ++j)
-    if (!same_sign(c[j], total)) keep_closer(best, s2d(s, kFace[j][0], kFace[j][1], kFace[j][2]));
-  return best;
+  r.n = 0;
+  if (!same_sign(c[0], total)) face_candidate(s, 1, 2, 3, r);
+  if (!same_sign(c[1], total)) face_candidate(s, 0, 2, 3, r);
+  if (!same_sign(c[2], total)) face_candidate(s, 0, 1, 3, r);
+  if (!same_sign(c[3], total)) face_candidate(s, 0, 1, 2, r);
 }
 
-Sub closest(const vec3* s, int n) {
-  switch (n) {
-    case 1: return vertex(s, 0);
-    case 2: return s1d(s, 0, 1);
-    case 3: return s2d(s, 0, 1, 2);
-    default: return s3d(s);
-  }
+// ---- typed core supports: the GJK loop is instantiated per pair of shape types ----
+
+// Support of A's core in A's frame (core: spheres and capsules without their radius).
+template <ConvexType T> inline vec3 core_support(const ConvexShape& s, const vec3& d) {
+  if constexpr (T == ConvexType::sphere) return vec3{};
+  else if constexpr (T == ConvexType::box)
+    return {d.x >= 0.0f ? s.half_extents.x : -s.half_extents.x, d.y >= 0.0f ? s.half_extents.y : -s.half_extents.y,
+            d.z >= 0.0f ? s.half_extents.z : -s.half_extents.z};
+  else if constexpr (T == ConvexType::capsule) return vec3{0.0f, d.y >= 0.0f ? s.half_height : -s.half_height, 0.0f};
+  else return local_support(s, d, true);
 }
+
+inline float flip(float x, bool keep) { return keep ? x : -x; }
+
+// B placed in A's frame, with B's type known. For a box, the rows of rot_b scaled by the
+// half extents are formed once: (+-h) * r == +-(h * r) exactly, so lb * rot_b + pos_b
+// keeps its bits with three selects and three additions per component.
+template <ConvexType T> struct CoreB {
+  const PairFrame& f;
+  vec3 e[3];
+  explicit CoreB(const PairFrame& frame) : f(frame) {
+    if constexpr (T == ConvexType::box) {
+      const vec3 h = f.b->half_extents;
+      for (int c = 0; c < 3; ++c)
+        e[0][c] = h.x * f.rot_b.m[0][c], e[1][c] = h.y * f.rot_b.m[1][c], e[2][c] = h.z * f.rot_b.m[2][c];
+    }
+  }
+  // B's support along -d, in A's frame.
+  vec3 operator()(const vec3& d) const {
+    const mat3& r = f.rot_b;
+    if constexpr (T == ConvexType::box) {
+      // -dot(d, axis k) >= 0, written as dot(d, axis k) <= 0 (the same for every float, NaN included).
+      const bool sx = dot(d, vec3{r.m[0][0], r.m[0][1], r.m[0][2]}) <= 0.0f;
+      const bool sy = dot(d, vec3{r.m[1][0], r.m[1][1], r.m[1][2]}) <= 0.0f;
+      const bool sz = dot(d, vec3{r.m[2][0], r.m[2][1], r.m[2][2]}) <= 0.0f;
+      return {((flip(e[0].x, sx) + flip(e[1].x, sy)) + flip(e[2].x, sz)) + f.pos_b.x,
+              ((flip(e[0].y, sx) + flip(e[1].y, sy)) + flip(e[2].y, sz)) + f.pos_b.y,
+              ((flip(e[0].z, sx) + flip(e[1].z, sy)) + flip(e[2].z, sz)) + f.pos_b.z};
+    } else {
+      const vec3 db{-dot(d, vec3{r.m[0][0], r.m[0][1], r.m[0][2]}), -dot(d, vec3{r.m[1][0], r.m[1][1], r.m[1][2]}),
+                    -dot(d, vec3{r.m[2][0], r.m[2][1], r.m[2][2]})};
+      return core_support<T>(*f.b, db) * r + f.pos_b;
+    }
+  }
+};
 
 // ---- the GJK loop ----
 
@@ -145,20 +219,28 @@ struct GjkOut {
 };
 
 // sep_threshold: in boolean mode, stop as soon as the lower bound on the distance exceeds it.
-GjkOut gjk(const PairFrame& pair, bool boolean, float sep_threshold, uint32_t max_iterations) {
-  GjkOut o;
-  Simplex& sx = o.simplex;
+// The points live in four fixed slots; the simplex is the slot order ord[0 .. n): a new
+// point goes into a free slot and the subalgorithm's result only reorders ord.
+template <ConvexType TA, ConvexType TB>
+void gjk_typed(const PairFrame& pair, bool boolean, float sep_threshold, uint32_t max_iterations, GjkOut& o) {
+  const ConvexShape& sa = *pair.a;
+  const CoreB<TB> support_b(pair);
+  SupportPoint slot[4];
+  float lambda[4] = {1.0f, 0.0f, 0.0f, 0.0f};
+  int ord[4] = {0, 1, 2, 3};
   // Start towards B: A - B's centre is near -pos_b, so search along +pos_b first.
   vec3 d0 = pair.pos_b;
   if (!(dot(d0, d0) > 0.0f)) d0 = {1.0f, 0.0f, 0.0f};
-  sx.p[0] = pair.support(d0);
-  sx.lambda[0] = 1.0f;
-  sx.n = 1;
-  vec3 v = sx.p[0].w;
+  slot[0].a = core_support<TA>(sa, d0);
+  slot[0].b = support_b(d0);
+  slot[0].w = slot[0].a - slot[0].b;
+  int n = 1;
+  vec3 v = slot[0].w;
   float vv = dot(v, v);
   // A relative stop: the distance is known to 1e-6 of itself, or to about 8 float ulps of
   // the pair's size when the shapes nearly touch (rounding allows no better).
   const float abs_tol = 1e-6f * pair.scale;
+  const float sep_sq = sep_threshold * sep_threshold, abs_sq = abs_tol * abs_tol;
   uint32_t it = 0;
   for (;; ++it) {
     if (vv == 0.0f) {
@@ -169,28 +251,37 @@ GjkOut gjk(const PairFrame& pair, bool boolean, float sep_threshold, uint32_t ma
       o.limit = true;
       break;
     }
-    const SupportPoint sp = pair.support(-v);
-    const float vw = dot(v, sp.w);
+    const vec3 d = -v;
+    const vec3 pa = core_support<TA>(sa, d);
+    const vec3 pb = support_b(d);
+    const vec3 sw = pa - pb;
+    const float vw = dot(v, sw);
     // Squared forms of "vw / |v| > threshold" and "gap <= abs_tol * |v|": no sqrt per step.
-    if (boolean && vw > 0.0f && vw * vw > sep_threshold * sep_threshold * vv) {
+    if (boolean && vw > 0.0f && vw * vw > sep_sq * vv) {
       o.early = true;
       break;
     }
     const float gap = vv - vw;  // (upper - lower bound of the distance) * |v|
-    if (gap <= 1e-6f * vv || gap * gap <= abs_tol * abs_tol * vv) break;
+    if (gap <= 1e-6f * vv || gap * gap <= abs_sq * vv) break;
     bool repeat = false;
-    for (int i = 0; i < sx.n; ++i) repeat = repeat || (sx.p[i].w == sp.w);
+    for (int i = 0; i < n; ++i) repeat = repeat || (slot[ord[i]].w == sw);
     if (repeat) break;
 
-    vec3 pts[4];
-    SupportPoint all[4];
-    for (int i = 0; i < sx.n; ++i) all[i] = sx.p[i], pts[i] = sx.p[i].w;
-    all[sx.n] = sp, pts[sx.n] = sp.w;
-    const Sub r = closest(pts, sx.n + 1);
+    // ord[n .. 4) are the free slots; the new point takes ord[n].
+    const int fresh = ord[n];
+    slot[fresh] = {sw, pa, pb};
+    SimplexView view;
+    for (int i = 0; i < 4; ++i) view.p[i] = &slot[ord[i]].w;
+    Sub r;
+    switch (n) {
+      case 1: s1d(view, 0, 1, r); break;
+      case 2: s2d(view, 0, 1, 2, r); break;
+      default: s3d(view, r); break;
+    }
     if (r.n == 0) break;  // cannot happen with finite input; keep the last simplex
     if (r.n == 4) {
-      for (int i = 0; i < 4; ++i) sx.p[i] = all[i], sx.lambda[i] = r.lambda[i];
-      sx.n = 4;
+      for (int i = 0; i < 4; ++i) lambda[i] = r.lambda[i];
+      n = 4;
       v = {};
       vv = 0.0f;
       o.enclosed = o.full = true;
@@ -198,17 +289,45 @@ GjkOut gjk(const PairFrame& pair, bool boolean, float sep_threshold, uint32_t ma
       break;
     }
     if (!(r.vv < vv)) break;  // no progress: rounding floor reached, keep the previous simplex
-    Simplex next;
-    for (int i = 0; i < r.n; ++i) next.p[i] = all[r.idx[i]], next.lambda[i] = r.lambda[i];
-    next.n = r.n;
-    sx = next;
+    // The kept vertices in the subalgorithm's order, then the dropped ones (free slots).
+    int next[4], used = 0;
+    for (int i = 0; i < r.n; ++i) next[i] = ord[r.idx[i]], used |= 1 << r.idx[i], lambda[i] = r.lambda[i];
+    int m = r.n;
+    for (int i = 0; i < 4; ++i)
+      if (!(used >> i & 1)) next[m++] = ord[i];
+    for (int i = 0; i < 4; ++i) ord[i] = next[i];
+    n = r.n;
     v = r.v;
     vv = r.vv;
   }
+  Simplex& sx = o.simplex;
+  for (int i = 0; i < n; ++i) sx.p[i] = slot[ord[i]], sx.lambda[i] = lambda[i];
+  sx.n = n;
   o.v = v;
   o.dist = std::sqrt(vv);
   o.iterations = it;
-  return o;
+}
+
+template <ConvexType TA>
+void gjk_b(const PairFrame& pair, bool boolean, float sep_threshold, uint32_t max_iterations, GjkOut& o) {
+  switch (pair.b->type) {
+    case ConvexType::sphere: return gjk_typed<TA, ConvexType::sphere>(pair, boolean, sep_threshold, max_iterations, o);
+    case ConvexType::box: return gjk_typed<TA, ConvexType::box>(pair, boolean, sep_threshold, max_iterations, o);
+    case ConvexType::capsule: return gjk_typed<TA, ConvexType::capsule>(pair, boolean, sep_threshold, max_iterations, o);
+    case ConvexType::cylinder: return gjk_typed<TA, ConvexType::cylinder>(pair, boolean, sep_threshold, max_iterations, o);
+    default: return gjk_typed<TA, ConvexType::points>(pair, boolean, sep_threshold, max_iterations, o);
+  }
+}
+
+// The loop for this pair's types (triangles and point clouds share the generic support).
+void gjk(const PairFrame& pair, bool boolean, float sep_threshold, uint32_t max_iterations, GjkOut& o) {
+  switch (pair.a->type) {
+    case ConvexType::sphere: return gjk_b<ConvexType::sphere>(pair, boolean, sep_threshold, max_iterations, o);
+    case ConvexType::box: return gjk_b<ConvexType::box>(pair, boolean, sep_threshold, max_iterations, o);
+    case ConvexType::capsule: return gjk_b<ConvexType::capsule>(pair, boolean, sep_threshold, max_iterations, o);
+    case ConvexType::cylinder: return gjk_b<ConvexType::cylinder>(pair, boolean, sep_threshold, max_iterations, o);
+    default: return gjk_b<ConvexType::points>(pair, boolean, sep_threshold, max_iterations, o);
+  }
 }
 
 // ---- frames, validation, results ----
@@ -240,12 +359,20 @@ bool sizes_ok(const ConvexShape& s) {
          s.half_extents.z >= 0.0f;
 }
 
-bool finite_mat(const mat3& m) { return is_finite(row(m, 0)) && is_finite(row(m, 1)) && is_finite(row(m, 2)); }
+// Bit 31 set when x is NaN or infinite (exponent all ones carries into the sign bit); OR-ed
+// over many values it checks them all without a branch per value.
+inline uint32_t nonfinite_bit(float x) { return (std::bit_cast<uint32_t>(x) & 0x7f800000u) + 0x00800000u; }
+inline uint32_t nonfinite_bits(const vec3& v) { return nonfinite_bit(v.x) | nonfinite_bit(v.y) | nonfinite_bit(v.z); }
+inline uint32_t nonfinite_bits(const mat3& m) {
+  return nonfinite_bits(row(m, 0)) | nonfinite_bits(row(m, 1)) | nonfinite_bits(row(m, 2));
+}
+inline bool finite_all(uint32_t bits) { return !(bits & 0x80000000u); }
 
 // Builds B-in-A's frame; false if something is not finite or out of range.
 bool make_frame(const ConvexShape& a, const ConvexPose& pa, const ConvexShape& b, const ConvexPose& pb,
                 PairFrame& f) {
-  if (!finite_mat(pa.rotation) || !finite_mat(pb.rotation) || !is_finite(pa.position) || !is_finite(pb.position))
+  if (!finite_all(nonfinite_bits(pa.rotation) | nonfinite_bits(pb.rotation) | nonfinite_bits(pa.position) |
+                  nonfinite_bits(pb.position)))
     return false;
   if (!sizes_ok(a) || !sizes_ok(b)) return false;
   const float ra = bound_radius(a), rb = bound_radius(b);
@@ -288,7 +415,8 @@ ConvexResult finish(const ConvexPose& pa, ConvexStatus st, float distance, const
   r.point_a = to_world_point(pa, wa);
   r.point_b = to_world_point(pa, wb);
   r.iterations = iterations;
-  if (!is_finite(r.normal) || !is_finite(r.point_a) || !is_finite(r.point_b) || !detail::is_finite(distance))
+  if (!finite_all(nonfinite_bits(r.normal) | nonfinite_bits(r.point_a) | nonfinite_bits(r.point_b) |
+                  nonfinite_bit(distance)))
     return invalid();
   return r;
 }
@@ -301,7 +429,8 @@ ConvexResult query(const ConvexShape& a, const ConvexPose& pa, const ConvexShape
   if (!make_frame(a, pa, b, pb, f)) return invalid();
   const float margins = margin_of(a) + margin_of(b);
   const float tol = opt.touch_tolerance * f.scale;
-  const GjkOut g = gjk(f, mode == Mode::intersect, margins + tol, opt.max_gjk_iterations);
+  GjkOut g;
+  gjk(f, mode == Mode::intersect, margins + tol, opt.max_gjk_iterations, g);
   vec3 wa, wb;
   witnesses(g.simplex, wa, wb);
   if (!g.enclosed) {
@@ -331,6 +460,26 @@ ConvexResult query(const ConvexShape& a, const ConvexPose& pa, const ConvexShape
   if (!e.converged) st = ConvexStatus::iteration_limit;
   const float out = mode == Mode::penetration || st != ConvexStatus::intersecting ? -depth : 0.0f;
   return finish(pa, st, out, e.normal, sa, sb, g.iterations + e.iterations);
+}
+
+// convex_intersect's status from a valid frame of two boxes, without its witnesses (the
+// batch checks beforehand that they would be finite).
+ConvexStatus box_intersect_status(const PairFrame& f, const ConvexQueryOptions& opt) {
+  const float margins = margin_of(*f.a) + margin_of(*f.b);
+  const float tol = opt.touch_tolerance * f.scale;
+  GjkOut g;
+  gjk_typed<ConvexType::box, ConvexType::box>(f, true, margins + tol, opt.max_gjk_iterations, g);
+  if (!g.enclosed) {
+    if (g.early) return ConvexStatus::separated;
+    if (g.limit) return ConvexStatus::iteration_limit;
+    const float dist = g.dist - margins;
+    return dist > tol ? ConvexStatus::separated : (dist >= -tol ? ConvexStatus::touching : ConvexStatus::intersecting);
+  }
+  if (g.full || margins > tol) return ConvexStatus::intersecting;
+  const EpaOutcome e = epa(f, g.simplex, opt.max_epa_iterations);
+  if (!e.converged) return ConvexStatus::iteration_limit;
+  const float depth = e.depth + margins;
+  return depth <= tol ? ConvexStatus::touching : ConvexStatus::intersecting;
 }
 
 }  // namespace
@@ -422,6 +571,44 @@ ConvexResult convex_distance(const ConvexShape& a, const ConvexPose& pa, const C
 ConvexResult convex_penetration(const ConvexShape& a, const ConvexPose& pa, const ConvexShape& b,
                                 const ConvexPose& pb, const ConvexQueryOptions& o) {
   return detail::query(a, pa, b, pb, o, detail::Mode::penetration);
+}
+
+}  // namespace gyro
+
+namespace gyro {
+
+void convex_intersect_batch(const ConvexBoxPairs& p, std::size_t count, ConvexStatus* out,
+                            const ConvexQueryOptions& opt) {
+  BoxFrameBlock block;
+  box_frames_fn* const frames = GYRO_DISPATCH(box_frames);
+  for (std::size_t base = 0; base < count; base += BoxFrameBlock::kMax) {
+    const std::size_t end = count - base < BoxFrameBlock::kMax ? count : base + BoxFrameBlock::kMax;
+    frames(p, base, end, block);
+    for (std::size_t i = base; i < end; ++i) {
+      const std::size_t k = i - base;
+      ConvexShape a, b;
+      a.type = b.type = ConvexType::box;
+      a.half_extents = {p.a_half[0][i], p.a_half[1][i], p.a_half[2][i]};
+      b.half_extents = {p.b_half[0][i], p.b_half[1][i], p.b_half[2][i]};
+      if (!block.ok[k]) {  // invalid, or outside the range the batch handles: the scalar query
+        ConvexPose pa, pb;
+        pa.position = {p.a_center[0][i], p.a_center[1][i], p.a_center[2][i]};
+        pb.position = {p.b_center[0][i], p.b_center[1][i], p.b_center[2][i]};
+        for (int r = 0; r < 3; ++r)
+          for (int c = 0; c < 3; ++c) pa.rotation.m[r][c] = p.a_rot[3 * r + c][i], pb.rotation.m[r][c] = p.b_rot[3 * r + c][i];
+        out[i] = convex_intersect(a, pa, b, pb, opt).status;
+        continue;
+      }
+      detail::PairFrame f;
+      f.a = &a, f.b = &b;
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) f.rot_b.m[r][c] = block.rot[3 * r + c][k];
+      f.pos_b = {block.pos[0][k], block.pos[1][k], block.pos[2][k]};
+      f.core = true;
+      f.scale = block.scale[k];
+      out[i] = detail::box_intersect_status(f, opt);
+    }
+  }
 }
 
 }  // namespace gyro

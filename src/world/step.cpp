@@ -388,9 +388,11 @@ void World::Impl::step(float dt) {
   if (particles && !particles->empty()) particles->step(dt);
   timings.particles = ms_since(t0);
 
-  t0 = Clock::now();
-  if (!soft_bodies.empty()) step_soft_bodies(dt);
-  timings.soft_bodies = ms_since(t0);
+  if (!soft_bodies.empty()) {
+    t0 = Clock::now();
+    step_soft_bodies(dt);
+    timings.soft_bodies = ms_since(t0);
+  }
 
   for (uint32_t i = 0; i < n; ++i) s.fx[i] = s.fy[i] = s.fz[i] = s.tx[i] = s.ty[i] = s.tz[i] = 0.0f;
 

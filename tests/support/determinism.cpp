@@ -17,6 +17,7 @@
 #include "workloads.hpp"
 #if defined(GYRO_HAS_DYNAMICS)
 #include "gyro/particles.hpp"
+#include "gyro/soft_body.hpp"
 #include "gyro/world.hpp"
 #endif
 
@@ -496,6 +497,46 @@ uint64_t scene_world_particles() {
   }
   return h.digest();
 }
+
+// Springs, cloth and soft bodies: a 24 x 24 cloth (xpbd, two corners pinned, a joint) draped
+// over a sphere collider, and a soft cube (the springs model, damped) dropped on a plane and
+// the sphere. Hashes both bodies every 10 of 60 steps.
+uint64_t scene_soft_cloth() {
+  detail::StateHasher h;
+  ClothDef def;
+  def.nx = def.nz = 24;
+  def.size_x = def.size_z = 2.4f;
+  def.center = {0.05f, 1.0f, -0.03f};
+  def.particle_mass = 0.05f;
+  def.bend_constants = {2.0e3f, 0.5f};
+  SoftBody cloth;
+  if (SoftBody::make_cloth(def, &cloth) != Status::ok) return 0;
+  uint32_t index;
+  if (cloth.cloth_index(0, 0, &index) != Status::ok || cloth.pin(index) != Status::ok) return 0;
+  if (cloth.cloth_index(23, 0, &index) != Status::ok || cloth.pin(index) != Status::ok) return 0;
+  uint32_t far_a, far_b;
+  if (cloth.cloth_index(0, 23, &far_a) != Status::ok || cloth.cloth_index(23, 23, &far_b) != Status::ok) return 0;
+  if (cloth.add_joint({far_a, far_b, 1.8f}) != Status::ok) return 0;
+  if (cloth.add_collider(Sphere{{0.0f, 0.0f, 0.0f}, 0.7f}, &index) != Status::ok) return 0;
+  SoftBody cube;
+  SoftSettings s;
+  s.model = SoftModel::springs;
+  s.damping = 0.2f;
+  if (cube.set_settings(s) != Status::ok) return 0;
+  SoftCubeDef cd;
+  cd.center = {0.4f, 1.5f, 0.1f};
+  cd.half_extent = 0.2f;
+  cd.structural = {1.0e4f, 2.0f};
+  if (SoftBody::make_cube(cd, &cube) != Status::ok) return 0;
+  if (cube.set_velocity(0, {1.0f, 0.0f, -0.5f}) != Status::ok) return 0;
+  if (cube.add_collider(Plane{{0.0f, 1.0f, 0.0f}, 0.0f}, &index) != Status::ok) return 0;
+  if (cube.add_collider(Sphere{{0.0f, 0.0f, 0.0f}, 0.7f}, &index) != Status::ok) return 0;
+  for (int step = 1; step <= 60; ++step) {
+    if (cloth.step(1.0f / 60.0f) != Status::ok || cube.step(1.0f / 60.0f) != Status::ok) return 0;
+    if (step % 10 == 0) h.add_u64(cloth.hash()), h.add_u64(cube.hash());
+  }
+  return h.digest();
+}
 #endif
 
 const DetScene kScenes[] = {
@@ -513,6 +554,7 @@ const DetScene kScenes[] = {
 #if defined(GYRO_HAS_DYNAMICS)
     {"world_pile", scene_world_pile, 0x754cdfcd63378e65ull},
     {"world_particles", scene_world_particles, 0x8e3766db8d8855a1ull},
+    {"soft_cloth", scene_soft_cloth, 0x4b131c88424dd139ull},
 #endif
 };
 
