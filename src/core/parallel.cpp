@@ -94,10 +94,11 @@ void parallel_for_chunks(std::size_t n, std::size_t chunk, ChunkFn fn, void* con
 #endif
 }
 
-void parallel_stages_erased(std::size_t stages, StageShapeFn shape, StageFn fn, void* context) {
+void parallel_stages_erased(std::size_t stages, std::size_t min_chunks, StageShapeFn shape, StageFn fn, void* context) {
   const uint32_t threads = thread_count();
   std::size_t widest = 0;
-  for (std::size_t s = 0; s < stages && widest < 2; ++s) {
+  if (min_chunks < 2) min_chunks = 2;
+  for (std::size_t s = 0; s < stages && widest < min_chunks; ++s) {
     std::size_t n = 0, chunk = 0;
     shape(context, s, &n, &chunk);
     if (chunk == 0) chunk = n ? n : 1;
@@ -108,7 +109,7 @@ void parallel_stages_erased(std::size_t stages, StageShapeFn shape, StageFn fn, 
     const std::size_t b = k * chunk;
     fn(context, s, b, b + chunk < n ? b + chunk : n);
   };
-  if (threads <= 1 || widest <= 1) {
+  if (threads <= 1 || widest < min_chunks) {
     FloatEnvGuard env;
     for (std::size_t s = 0; s < stages; ++s) {
       std::size_t n = 0, chunk = 0;

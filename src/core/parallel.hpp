@@ -46,18 +46,18 @@ template <class F> void parallel_for(std::size_t n, std::size_t chunk, F&& fn) {
 /// dozen colours would otherwise pay a dozen forks). Stage s has *n elements cut into fixed
 /// chunks of *chunk (set by shape(s)); fn(s, begin, end) runs once per chunk. Results never
 /// depend on the thread count for the same reason as parallel_for's. With one thread, or
-/// when no stage has more than one chunk, everything runs on the calling thread in order.
+/// when no stage has min_chunks chunks, everything runs on the calling thread in order.
 using StageShapeFn = void (*)(void* context, std::size_t stage, std::size_t* n, std::size_t* chunk);
 using StageFn = void (*)(void* context, std::size_t stage, std::size_t begin, std::size_t end);
-void parallel_stages_erased(std::size_t stages, StageShapeFn shape, StageFn fn, void* context);
-template <class Shape, class F> void parallel_stages(std::size_t stages, Shape&& shape, F&& fn) {
+void parallel_stages_erased(std::size_t stages, std::size_t min_chunks, StageShapeFn shape, StageFn fn, void* context);
+template <class Shape, class F> void parallel_stages(std::size_t stages, std::size_t min_chunks, Shape&& shape, F&& fn) {
   struct Ctx {
     std::remove_reference_t<Shape>* shape;
     std::remove_reference_t<F>* fn;
   } ctx{&shape, &fn};
   auto shape_thunk = [](void* c, std::size_t s, std::size_t* n, std::size_t* chunk) { (*static_cast<Ctx*>(c)->shape)(s, n, chunk); };
   auto fn_thunk = [](void* c, std::size_t s, std::size_t b, std::size_t e) { (*static_cast<Ctx*>(c)->fn)(s, b, e); };
-  parallel_stages_erased(stages, shape_thunk, fn_thunk, &ctx);
+  parallel_stages_erased(stages, min_chunks, shape_thunk, fn_thunk, &ctx);
 }
 
 inline constexpr std::size_t kReduceBlock = 4096;

@@ -33,12 +33,13 @@ using detail::fail;
 using detail::is_finite;
 using detail::MeshCollider;
 
-// Parallel chunks (fixed: results do not depend on threads). Large, because a step is a
-// chain of dependent stages with a barrier each: a stage is only worth splitting when each
-// thread gets tens of microseconds of work (a 256 x 256 cloth, not a 64 x 64 one).
-constexpr std::size_t kParticleChunk = 8192;  // particles per chunk of the predict and velocity passes
-constexpr std::size_t kCollideChunk = 1024;   // particles per chunk of the collision pass (costlier per particle)
-constexpr std::size_t kSpringChunk = 8192;    // springs per chunk of a colour (rounded to whole runs)
+// Parallel chunks (fixed: results do not depend on threads). A step is a chain of dependent
+// stages with a barrier each, so it only goes parallel when its widest stage has
+// kMinParallelChunks chunks (a 128 x 128 cloth does, a 64 x 64 one runs on one thread).
+constexpr std::size_t kParticleChunk = 4096;  // particles per chunk of the predict and velocity passes
+constexpr std::size_t kCollideChunk = 512;    // particles per chunk of the collision pass (costlier per particle)
+constexpr std::size_t kSpringChunk = 2048;    // springs per chunk of a colour (rounded to whole runs)
+constexpr std::size_t kMinParallelChunks = 4;
 constexpr uint32_t kMaxSubsteps = 256, kMaxIterations = 64;
 constexpr int kMaxSweeps = 3;                 // swept collisions per particle and sub-step
 
@@ -441,7 +442,7 @@ Status SoftBody::Impl::step(float dt) {
     return velocity_stage;
   };
   detail::parallel_stages(
-      substeps * per_sub,
+      substeps * per_sub, kMinParallelChunks,
       [&](std::size_t stage, std::size_t* count, std::size_t* chunk) {
         std::size_t c = 0;
         switch (decode(stage, &c)) {

@@ -17,6 +17,7 @@
 #include "core/validate.hpp"
 #include "geometry/convex_support.hpp"
 #include "geometry/gjk_batch.hpp"
+#include "gyro/runtime.hpp"
 
 #include <bit>
 
@@ -161,17 +162,17 @@ inline void s3d(const SimplexView& s, Sub& r) {
 
 // ---- typed core supports: the GJK loop is instantiated per pair of shape types ----
 
+inline float flip(float x, bool keep) { return keep ? x : -x; }
+
 // Support of A's core in A's frame (core: spheres and capsules without their radius).
 template <ConvexType T> inline vec3 core_support(const ConvexShape& s, const vec3& d) {
   if constexpr (T == ConvexType::sphere) return vec3{};
   else if constexpr (T == ConvexType::box)
-    return {d.x >= 0.0f ? s.half_extents.x : -s.half_extents.x, d.y >= 0.0f ? s.half_extents.y : -s.half_extents.y,
-            d.z >= 0.0f ? s.half_extents.z : -s.half_extents.z};
+    return {flip(s.half_extents.x, d.x >= 0.0f), flip(s.half_extents.y, d.y >= 0.0f), flip(s.half_extents.z, d.z >= 0.0f)};
   else if constexpr (T == ConvexType::capsule) return vec3{0.0f, d.y >= 0.0f ? s.half_height : -s.half_height, 0.0f};
   else return local_support(s, d, true);
 }
 
-inline float flip(float x, bool keep) { return keep ? x : -x; }
 
 // B placed in A's frame, with B's type known. For a box, the rows of rot_b scaled by the
 // half extents are formed once: (+-h) * r == +-(h * r) exactly, so lb * rot_b + pos_b
@@ -191,12 +192,13 @@ template <ConvexType T> struct CoreB {
     const mat3& r = f.rot_b;
     if constexpr (T == ConvexType::box) {
       // -dot(d, axis k) >= 0, written as dot(d, axis k) <= 0 (the same for every float, NaN included).
-      const bool sx = dot(d, vec3{r.m[0][0], r.m[0][1], r.m[0][2]}) <= 0.0f;
-      const bool sy = dot(d, vec3{r.m[1][0], r.m[1][1], r.m[1][2]}) <= 0.0f;
-      const bool sz = dot(d, vec3{r.m[2][0], r.m[2][1], r.m[2][2]}) <= 0.0f;
-      return {((flip(e[0].x, sx) + flip(e[1].x, sy)) + flip(e[2].x, sz)) + f.pos_b.x,
-              ((flip(e[0].y, sx) + flip(e[1].y, sy)) + flip(e[2].y, sz)) + f.pos_b.y,
-              ((flip(e[0].z, sx) + flip(e[1].z, sy)) + flip(e[2].z, sz)) + f.pos_b.z};
+      // The sign as a factor: x * 1 and x * -1 are x and -x exactly.
+      const float sx = dot(d, vec3{r.m[0][0], r.m[0][1], r.m[0][2]}) <= 0.0f ? 1.0f : -1.0f;
+      const float sy = dot(d, vec3{r.m[1][0], r.m[1][1], r.m[1][2]}) <= 0.0f ? 1.0f : -1.0f;
+      const float sz = dot(d, vec3{r.m[2][0], r.m[2][1], r.m[2][2]}) <= 0.0f ? 1.0f : -1.0f;
+      return {((e[0].x * sx + e[1].x * sy) + e[2].x * sz) + f.pos_b.x,
+              ((e[0].y * sx + e[1].y * sy) + e[2].y * sz) + f.pos_b.y,
+              ((e[0].z * sx + e[1].z * sy) + e[2].z * sz) + f.pos_b.z};
     } else {
       const vec3 db{-dot(d, vec3{r.m[0][0], r.m[0][1], r.m[0][2]}), -dot(d, vec3{r.m[1][0], r.m[1][1], r.m[1][2]}),
                     -dot(d, vec3{r.m[2][0], r.m[2][1], r.m[2][2]})};
@@ -208,7 +210,15 @@ template <ConvexType T> struct CoreB {
 // ---- the GJK loop ----
 
 struct GjkOut {
-  Simplex simplex;
+  // The simplex: points in fixed slots (left uninitialised until written), in the order
+  // ord[0 .. n), with their weights.
+  union Slots {
+    SupportPoint p[4];
+    Slots() {}
+  } slot;
+  int ord[4] = {0, 1, 2, 3};
+  float lambda[4] = {1.0f, 0.0f, 0.0f, 0.0f};
+  int n = 0;
   vec3 v;               // closest point of the simplex (A's frame)
   float dist = 0.0f;    // |v|
   bool enclosed = false;  // the origin is inside or on the simplex
@@ -216,6 +226,13 @@ struct GjkOut {
   bool early = false;     // boolean exit: separated by more than the threshold
   bool limit = false;     // iteration limit
   uint32_t iterations = 0;
+
+  Simplex simplex() const {
+    Simplex sx;
+    for (int i = 0; i < n; ++i) sx.p[i] = slot.p[ord[i]], sx.lambda[i] = lambda[i];
+    sx.n = n;
+    return sx;
+  }
 };
 
 // sep_threshold: in boolean mode, stop as soon as the lower bound on the distance exceeds it.
@@ -225,9 +242,9 @@ template <ConvexType TA, ConvexType TB>
 void gjk_typed(const PairFrame& pair, bool boolean, float sep_threshold, uint32_t max_iterations, GjkOut& o) {
   const ConvexShape& sa = *pair.a;
   const CoreB<TB> support_b(pair);
-  SupportPoint slot[4];
-  float lambda[4] = {1.0f, 0.0f, 0.0f, 0.0f};
-  int ord[4] = {0, 1, 2, 3};
+  SupportPoint* const slot = o.slot.p;
+  float* const lambda = o.lambda;
+  int* const ord = o.ord;
   // Start towards B: A - B's centre is near -pos_b, so search along +pos_b first.
   vec3 d0 = pair.pos_b;
   if (!(dot(d0, d0) > 0.0f)) d0 = {1.0f, 0.0f, 0.0f};
@@ -300,9 +317,7 @@ void gjk_typed(const PairFrame& pair, bool boolean, float sep_threshold, uint32_
     v = r.v;
     vv = r.vv;
   }
-  Simplex& sx = o.simplex;
-  for (int i = 0; i < n; ++i) sx.p[i] = slot[ord[i]], sx.lambda[i] = lambda[i];
-  sx.n = n;
+  o.n = n;
   o.v = v;
   o.dist = std::sqrt(vv);
   o.iterations = it;
@@ -355,24 +370,24 @@ float bound_radius(const ConvexShape& s) {
 }
 
 bool sizes_ok(const ConvexShape& s) {
-  return s.radius >= 0.0f && s.half_height >= 0.0f && s.half_extents.x >= 0.0f && s.half_extents.y >= 0.0f &&
-         s.half_extents.z >= 0.0f;
+  return (s.radius >= 0.0f) & (s.half_height >= 0.0f) & (s.half_extents.x >= 0.0f) & (s.half_extents.y >= 0.0f) &
+         (s.half_extents.z >= 0.0f);
 }
 
-// Bit 31 set when x is NaN or infinite (exponent all ones carries into the sign bit); OR-ed
-// over many values it checks them all without a branch per value.
-inline uint32_t nonfinite_bit(float x) { return (std::bit_cast<uint32_t>(x) & 0x7f800000u) + 0x00800000u; }
-inline uint32_t nonfinite_bits(const vec3& v) { return nonfinite_bit(v.x) | nonfinite_bit(v.y) | nonfinite_bit(v.z); }
-inline uint32_t nonfinite_bits(const mat3& m) {
-  return nonfinite_bits(row(m, 0)) | nonfinite_bits(row(m, 1)) | nonfinite_bits(row(m, 2));
+// x - x is 0 for a finite x and NaN for a NaN or infinite one; sums of these are 0 exactly
+// when every value is finite: one branch for many values.
+inline float nonfinite_bit(float x) { return x - x; }
+inline float nonfinite_bits(const vec3& v) { return (nonfinite_bit(v.x) + nonfinite_bit(v.y)) + nonfinite_bit(v.z); }
+inline float nonfinite_bits(const mat3& m) {
+  return (nonfinite_bits(row(m, 0)) + nonfinite_bits(row(m, 1))) + nonfinite_bits(row(m, 2));
 }
-inline bool finite_all(uint32_t bits) { return !(bits & 0x80000000u); }
+inline bool finite_all(float sum) { return sum == 0.0f; }
 
 // Builds B-in-A's frame; false if something is not finite or out of range.
 bool make_frame(const ConvexShape& a, const ConvexPose& pa, const ConvexShape& b, const ConvexPose& pb,
                 PairFrame& f) {
-  if (!finite_all(nonfinite_bits(pa.rotation) | nonfinite_bits(pb.rotation) | nonfinite_bits(pa.position) |
-                  nonfinite_bits(pb.position)))
+  if (!finite_all((nonfinite_bits(pa.rotation) + nonfinite_bits(pb.rotation)) +
+                  (nonfinite_bits(pa.position) + nonfinite_bits(pb.position))))
     return false;
   if (!sizes_ok(a) || !sizes_ok(b)) return false;
   const float ra = bound_radius(a), rb = bound_radius(b);
@@ -400,9 +415,12 @@ ConvexResult invalid() {
 vec3 to_world_point(const ConvexPose& pa, const vec3& p) { return p * pa.rotation + pa.position; }
 vec3 to_world_dir(const ConvexPose& pa, const vec3& d) { return d * pa.rotation; }
 
-void witnesses(const Simplex& sx, vec3& pa, vec3& pb) {
+void witnesses(const GjkOut& g, vec3& pa, vec3& pb) {
   pa = {}, pb = {};
-  for (int i = 0; i < sx.n; ++i) pa += sx.p[i].a * sx.lambda[i], pb += sx.p[i].b * sx.lambda[i];
+  for (int i = 0; i < g.n; ++i) {
+    const SupportPoint& p = g.slot.p[g.ord[i]];
+    pa += p.a * g.lambda[i], pb += p.b * g.lambda[i];
+  }
 }
 
 // Final result from A-frame quantities; guarantees finite output.
@@ -415,8 +433,8 @@ ConvexResult finish(const ConvexPose& pa, ConvexStatus st, float distance, const
   r.point_a = to_world_point(pa, wa);
   r.point_b = to_world_point(pa, wb);
   r.iterations = iterations;
-  if (!finite_all(nonfinite_bits(r.normal) | nonfinite_bits(r.point_a) | nonfinite_bits(r.point_b) |
-                  nonfinite_bit(distance)))
+  if (!finite_all((nonfinite_bits(r.normal) + nonfinite_bits(r.point_a)) +
+                  (nonfinite_bits(r.point_b) + nonfinite_bit(distance))))
     return invalid();
   return r;
 }
@@ -432,7 +450,7 @@ ConvexResult query(const ConvexShape& a, const ConvexPose& pa, const ConvexShape
   GjkOut g;
   gjk(f, mode == Mode::intersect, margins + tol, opt.max_gjk_iterations, g);
   vec3 wa, wb;
-  witnesses(g.simplex, wa, wb);
+  witnesses(g, wa, wb);
   if (!g.enclosed) {
     // Cores apart: the gap is |v| minus the margins, along v.
     const vec3 n = normalized(-g.v);
@@ -453,7 +471,7 @@ ConvexResult query(const ConvexShape& a, const ConvexPose& pa, const ConvexShape
   if (mode != Mode::penetration && (g.full || margins > tol)) {
     return finish(pa, ConvexStatus::intersecting, 0.0f, vec3{}, wa, wb, g.iterations);
   }
-  const EpaOutcome e = epa(f, g.simplex, opt.max_epa_iterations);
+  const EpaOutcome e = epa(f, g.simplex(), opt.max_epa_iterations);
   const float depth = e.depth + margins;
   const vec3 sa = e.point_a + e.normal * margin_of(a), sb = e.point_b - e.normal * margin_of(b);
   ConvexStatus st = depth <= tol ? ConvexStatus::touching : ConvexStatus::intersecting;
@@ -476,7 +494,7 @@ ConvexStatus box_intersect_status(const PairFrame& f, const ConvexQueryOptions& 
     return dist > tol ? ConvexStatus::separated : (dist >= -tol ? ConvexStatus::touching : ConvexStatus::intersecting);
   }
   if (g.full || margins > tol) return ConvexStatus::intersecting;
-  const EpaOutcome e = epa(f, g.simplex, opt.max_epa_iterations);
+  const EpaOutcome e = epa(f, g.simplex(), opt.max_epa_iterations);
   if (!e.converged) return ConvexStatus::iteration_limit;
   const float depth = e.depth + margins;
   return depth <= tol ? ConvexStatus::touching : ConvexStatus::intersecting;
@@ -581,16 +599,23 @@ void convex_intersect_batch(const ConvexBoxPairs& p, std::size_t count, ConvexSt
                             const ConvexQueryOptions& opt) {
   BoxFrameBlock block;
   box_frames_fn* const frames = GYRO_DISPATCH(box_frames);
+  // The first two GJK iterations in the lanes pay only with several lanes: the scalar level
+  // leaves them to the loop (same verdicts either way).
+  const bool early = opt.max_gjk_iterations >= 2 && simd_level_width(simd_level()) > 1;
   for (std::size_t base = 0; base < count; base += BoxFrameBlock::kMax) {
     const std::size_t end = count - base < BoxFrameBlock::kMax ? count : base + BoxFrameBlock::kMax;
-    frames(p, base, end, block);
+    frames(p, base, end, opt.touch_tolerance, early, block);
     for (std::size_t i = base; i < end; ++i) {
       const std::size_t k = i - base;
+      if (block.code[k] == BoxFrameBlock::kSeparatedEarly) {
+        out[i] = ConvexStatus::separated;
+        continue;
+      }
       ConvexShape a, b;
       a.type = b.type = ConvexType::box;
       a.half_extents = {p.a_half[0][i], p.a_half[1][i], p.a_half[2][i]};
       b.half_extents = {p.b_half[0][i], p.b_half[1][i], p.b_half[2][i]};
-      if (!block.ok[k]) {  // invalid, or outside the range the batch handles: the scalar query
+      if (block.code[k] == BoxFrameBlock::kScalar) {  // invalid, or outside the range the batch handles: the scalar query
         ConvexPose pa, pb;
         pa.position = {p.a_center[0][i], p.a_center[1][i], p.a_center[2][i]};
         pb.position = {p.b_center[0][i], p.b_center[1][i], p.b_center[2][i]};

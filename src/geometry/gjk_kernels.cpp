@@ -11,9 +11,31 @@ namespace {
 // x - x is 0 for a finite x and NaN otherwise; summing keeps a NaN.
 template <class L> inline L finite_acc(L acc, L x) { return acc + (x - x); }
 
+// gjk.cpp's typed box supports (core_support<box>, CoreB<box>) over lanes.
+template <class L> struct BoxSupports {
+  V3<L> ha;       // A's half extents
+  L rot[3][3];    // B's axes in A's frame (rows)
+  L e[3][3];      // B's axes scaled by its half extents
+  L pos[3];       // B's origin in A's frame
+  V3<L> a(const V3<L>& d) const {
+    return {select(d.x >= L(0.0f), ha.x, -ha.x), select(d.y >= L(0.0f), ha.y, -ha.y), select(d.z >= L(0.0f), ha.z, -ha.z)};
+  }
+  V3<L> b(const V3<L>& d) const {
+    const auto s0 = dot(d, V3<L>{rot[0][0], rot[0][1], rot[0][2]}) <= L(0.0f);
+    const auto s1 = dot(d, V3<L>{rot[1][0], rot[1][1], rot[1][2]}) <= L(0.0f);
+    const auto s2 = dot(d, V3<L>{rot[2][0], rot[2][1], rot[2][2]}) <= L(0.0f);
+    L c[3];
+    for (int k = 0; k < 3; ++k)
+      c[k] = ((select(s0, e[0][k], -e[0][k]) + select(s1, e[1][k], -e[1][k])) + select(s2, e[2][k], -e[2][k])) + pos[k];
+    return {c[0], c[1], c[2]};
+  }
+};
+
+
 }  // namespace
 
-GYRO_FLATTEN void box_frames(const ConvexBoxPairs& p, std::size_t begin, std::size_t end, BoxFrameBlock& out) {
+GYRO_FLATTEN void box_frames(const ConvexBoxPairs& p, std::size_t begin, std::size_t end, float touch_tolerance,
+                              bool early, BoxFrameBlock& out) {
   for_lanes(begin, end, [&](auto tag, std::size_t i) {
     using L = decltype(tag);
     const std::size_t k = i - begin;
@@ -65,7 +87,54 @@ GYRO_FLATTEN void box_frames(const ConvexBoxPairs& p, std::size_t begin, std::si
       for (int c = 0; c < 3; ++c) store(&out.rot[3 * r + c][k], rot[r][c]);
     for (int c = 0; c < 3; ++c) store(&out.pos[c][k], pos[c]);
     store(&out.scale[k], scale);
-    store_bits(&out.ok[k], select(ok, from_bits<L>(1u), from_bits<L>(0u)));
+    L code = select(ok, from_bits<L>(BoxFrameBlock::kFrame), from_bits<L>(BoxFrameBlock::kScalar));
+    if (early && any(ok)) {
+      // GJK's first two iterations (gjk_typed<box, box> in boolean mode; margins are 0, so
+      // the separation threshold is the tolerance). A lane is decided only where the scalar
+      // loop takes this same path to its early exit; any other turn leaves it to the loop.
+      BoxSupports<L> sup;
+      sup.ha = ha;
+      for (int r = 0; r < 3; ++r) {
+        const L h = r == 0 ? hb.x : (r == 1 ? hb.y : hb.z);
+        for (int c = 0; c < 3; ++c) sup.rot[r][c] = rot[r][c], sup.e[r][c] = h * rot[r][c];
+      }
+      for (int c = 0; c < 3; ++c) sup.pos[c] = pos[c];
+      const L tol = L(touch_tolerance) * scale;
+      const L sep = L(0.0f) + tol;
+      const L sep_sq = sep * sep;
+      const L abs_tol = L(1e-6f) * scale;
+      const L abs_sq = abs_tol * abs_tol;
+      V3<L> d0{pos[0], pos[1], pos[2]};
+      const auto zero_dir = !(dot(d0, d0) > L(0.0f));
+      d0 = vselect(zero_dir, V3<L>{L(1.0f), L(0.0f), L(0.0f)}, d0);
+      const V3<L> w0 = sup.a(d0) - sup.b(d0);
+      const L vv0 = dot(w0, w0);
+      // Iteration 0.
+      const V3<L> d1 = -w0;
+      const V3<L> w1 = sup.a(d1) - sup.b(d1);
+      const L vw0 = dot(w0, w1);
+      const auto early0 = (vv0 != L(0.0f)) && (vw0 > L(0.0f)) && (vw0 * vw0 > sep_sq * vv0);
+      const L gap0 = vv0 - vw0;
+      const auto stop0 = (vv0 == L(0.0f)) || (gap0 <= L(1e-6f) * vv0) || (gap0 * gap0 <= abs_sq * vv0) ||
+                         ((w0.x == w1.x) && (w0.y == w1.y) && (w0.z == w1.z));
+      // The segment w0 w1 (s1d): the vertex w0 means no progress (the loop stops there).
+      const V3<L> t = w1 - w0;
+      const L a0 = dot(w0, t), a1 = dot(w1, t);
+      const auto on_w1 = !(a1 > L(0.0f));
+      const L den = a1 - a0;
+      const L l0 = a1 / den, l1 = -a0 / den;
+      const V3<L> vs = w0 * l0 + w1 * l1;
+      const V3<L> v = vselect(on_w1, w1, vs);
+      const L vv = dot(v, v);
+      const auto step0 = !early0 && !stop0 && (a0 < L(0.0f)) && (vv < vv0);
+      // Iteration 1.
+      const V3<L> d2 = -v;
+      const V3<L> w2 = sup.a(d2) - sup.b(d2);
+      const L vw = dot(v, w2);
+      const auto early1 = step0 && (vv != L(0.0f)) && (vw > L(0.0f)) && (vw * vw > sep_sq * vv);
+      code = select(ok && (early0 || early1), from_bits<L>(BoxFrameBlock::kSeparatedEarly), code);
+    }
+    store_bits(&out.code[k], code);
   });
 }
 
