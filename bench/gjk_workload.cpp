@@ -113,6 +113,34 @@ void run_gyro(const BoxPairs& p, const std::vector<double>& sep, std::size_t n, 
   }
 }
 
+// convex_intersect_batch over the SoA box columns, per SIMD level (the verdicts are those
+// of convex_intersect at every level; the checksum line says whether they matched).
+void run_gyro_batch(const BoxPairs& p, const std::vector<double>& sep, std::size_t n, const Options& o) {
+  ConvexBoxPairs pairs;
+  auto fill = [](const BoxSet& s, const float* (&c)[3], const float* (&h)[3], const float* (&r)[9]) {
+    c[0] = s.cx.data(), c[1] = s.cy.data(), c[2] = s.cz.data();
+    h[0] = s.hx.data(), h[1] = s.hy.data(), h[2] = s.hz.data();
+    for (int k = 0; k < 3; ++k)
+      for (int col = 0; col < 3; ++col) r[3 * k + col] = s.r[3 * col + k].data();  // row k = column k of R
+  };
+  fill(p.a, pairs.a_center, pairs.a_half, pairs.a_rot);
+  fill(p.b, pairs.b_center, pairs.b_half, pairs.b_rot);
+  std::vector<ConvexStatus> out(n), first;
+  for (SimdLevel level : levels_to_run(o)) {
+    set_simd_level(level);
+    const double ms = median_ms(o.reps, [&] { convex_intersect_batch(pairs, n, out.data()); });
+    if (first.empty()) first = out;
+    std::size_t limits = 0;
+    for (std::size_t i = 0; i < n; ++i) limits += out[i] == ConvexStatus::iteration_limit;
+    const Score s = score(
+        sep, n, [&](std::size_t i) { return overlapping(out[i]); }, [](std::size_t) { return 0.0; },
+        [](std::size_t) { return kNan; });
+    if (out != first) std::printf("# WARNING: gjk_intersect_batch verdicts differ between SIMD levels\n");
+    emit("gyro", "gjk_intersect_batch", simd_level_name(level), ms, n, s, false, false, o.reps, limits);
+  }
+  set_simd_level(SimdLevel::automatic);
+}
+
 #if defined(GYRO_BENCH_HAS_BULLET)
 btTransform bt_transform(const BoxSet& s, std::size_t k) {
   const btMatrix3x3 r(s.r[0][k], s.r[1][k], s.r[2][k], s.r[3][k], s.r[4][k], s.r[5][k], s.r[6][k], s.r[7][k], s.r[8][k]);
@@ -230,6 +258,7 @@ void run_gjk(const Options& o) {
   std::printf("# GJK: N1's %zu OBB pairs as generic convex shapes; binary64 SAT: %zu overlapping; 1 thread\n", n,
               overlapping_pairs);
   run_gyro(p, sep, n, o.reps);
+  run_gyro_batch(p, sep, n, o);
   if (!o.peers) return;
   const int peer_reps = std::max(1, std::min(o.reps, 3));
   run_ccd(p, sep, n, peer_reps);

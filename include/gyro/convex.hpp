@@ -118,6 +118,27 @@ ConvexResult convex_distance(const ConvexShape& a, const ConvexPose& pa, const C
 ConvexResult convex_penetration(const ConvexShape& a, const ConvexPose& pa, const ConvexShape& b,
                                 const ConvexPose& pb, const ConvexQueryOptions& options = {});
 
+/// Many box pairs at once, in structure-of-arrays form: pair i is box A with centre
+/// (a_center[0][i], a_center[1][i], a_center[2][i]), half extents a_half[0..2][i] and
+/// rotation a_rot[3 * k + c][i] = ConvexPose::rotation.m[k][c] (row k = local axis k), and
+/// box B likewise.
+struct ConvexBoxPairs {
+  const float* a_center[3];
+  const float* a_half[3];
+  const float* a_rot[9];
+  const float* b_center[3];
+  const float* b_half[3];
+  const float* b_rot[9];
+};
+
+/// convex_intersect(box A_i, box B_i).status for i in [0, count), written to out[i]: the
+/// same verdict, bit for bit, at every SIMD level (the pairs' relative frames are formed over
+/// SIMD lanes, one pair per lane, with the scalar query's operations; GJK then runs per pair
+/// on them, without the witness points and normals that convex_intersect also reports).
+/// Invalid pairs get ConvexStatus::invalid_input (and gyro::last_error() a message).
+void convex_intersect_batch(const ConvexBoxPairs& pairs, std::size_t count, ConvexStatus* out,
+                            const ConvexQueryOptions& options = {});
+
 /// A convex polyhedron from build_convex_hull: welded vertices, planar faces (coplanar
 /// triangles merged, collinear boundary vertices removed) and unique edges.
 struct ConvexHull {

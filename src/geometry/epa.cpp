@@ -94,6 +94,37 @@ bool link(Polytope& p, int from) {
   return true;
 }
 
+// link() for the fan of new faces [from, nf) around the new vertex: face (s, t, w) has edge
+// 0 on the horizon (linked already), edge 1 t -> w and edge 2 w -> s, so edge 1 pairs with
+// edge 2 of the face starting at t, and edge 2 with edge 1 of the face ending at s. When no
+// vertex starts or ends two fan faces, every edge has exactly one partner, and this finds
+// what link() finds (link() would fail exactly where a partner is missing). Otherwise it
+// leaves the fan to link().
+bool link_fan(Polytope& p, int from) {
+  static thread_local int start_of[kMaxVerts], end_of[kMaxVerts], stamp_s[kMaxVerts], stamp_e[kMaxVerts];
+  static thread_local int stamp = 0;
+  if (++stamp == 0x7fffffff) {
+    for (int i = 0; i < kMaxVerts; ++i) stamp_s[i] = stamp_e[i] = 0;
+    stamp = 1;
+  }
+  for (int f = from; f < p.nf; ++f) {
+    const int s = p.face[f].v[0], t = p.face[f].v[1];
+    if (stamp_s[s] == stamp || stamp_e[t] == stamp || p.face[f].adj[1] >= 0 || p.face[f].adj[2] >= 0)
+      return link(p, from);
+    stamp_s[s] = stamp_e[t] = stamp, start_of[s] = f, end_of[t] = f;
+  }
+  for (int f = from; f < p.nf; ++f) {
+    Face& fa = p.face[f];
+    const int s = fa.v[0], t = fa.v[1];
+    if (stamp_s[t] != stamp || stamp_e[s] != stamp) return false;
+    const int g1 = start_of[t], g2 = end_of[s];
+    if (g1 == f || g2 == f) return link(p, from);
+    fa.adj[1] = g1, fa.adj_edge[1] = 2;
+    fa.adj[2] = g2, fa.adj_edge[2] = 1;
+  }
+  return true;
+}
+
 float dist_to_line(const vec3& p, const vec3& o, const vec3& d) {
   const float dd = dot(d, d);
   if (!(dd > 0.0f)) return length(p - o);
@@ -251,7 +282,7 @@ EpaOutcome epa(const PairFrame& pair, const Simplex& start, uint32_t max_iterati
     }
     // A horizon that is not one loop means rounding broke the surface: stop with the
     // closest face of the last closed polytope (`best`, whose record is intact).
-    if (!link(p, first)) break;
+    if (!link_fan(p, first)) break;
   }
   out.iterations = it;
   if (best < 0) {

@@ -376,18 +376,18 @@ bool sizes_ok(const ConvexShape& s) {
 
 // x - x is 0 for a finite x and NaN for a NaN or infinite one; sums of these are 0 exactly
 // when every value is finite: one branch for many values.
-inline float nonfinite_bit(float x) { return x - x; }
-inline float nonfinite_bits(const vec3& v) { return (nonfinite_bit(v.x) + nonfinite_bit(v.y)) + nonfinite_bit(v.z); }
-inline float nonfinite_bits(const mat3& m) {
-  return (nonfinite_bits(row(m, 0)) + nonfinite_bits(row(m, 1))) + nonfinite_bits(row(m, 2));
+inline float nonfinite_term(float x) { return x - x; }
+inline float nonfinite_sum(const vec3& v) { return (nonfinite_term(v.x) + nonfinite_term(v.y)) + nonfinite_term(v.z); }
+inline float nonfinite_sum(const mat3& m) {
+  return (nonfinite_sum(row(m, 0)) + nonfinite_sum(row(m, 1))) + nonfinite_sum(row(m, 2));
 }
 inline bool finite_all(float sum) { return sum == 0.0f; }
 
 // Builds B-in-A's frame; false if something is not finite or out of range.
 bool make_frame(const ConvexShape& a, const ConvexPose& pa, const ConvexShape& b, const ConvexPose& pb,
                 PairFrame& f) {
-  if (!finite_all((nonfinite_bits(pa.rotation) + nonfinite_bits(pb.rotation)) +
-                  (nonfinite_bits(pa.position) + nonfinite_bits(pb.position))))
+  if (!finite_all((nonfinite_sum(pa.rotation) + nonfinite_sum(pb.rotation)) +
+                  (nonfinite_sum(pa.position) + nonfinite_sum(pb.position))))
     return false;
   if (!sizes_ok(a) || !sizes_ok(b)) return false;
   const float ra = bound_radius(a), rb = bound_radius(b);
@@ -433,8 +433,8 @@ ConvexResult finish(const ConvexPose& pa, ConvexStatus st, float distance, const
   r.point_a = to_world_point(pa, wa);
   r.point_b = to_world_point(pa, wb);
   r.iterations = iterations;
-  if (!finite_all((nonfinite_bits(r.normal) + nonfinite_bits(r.point_a)) +
-                  (nonfinite_bits(r.point_b) + nonfinite_bit(distance))))
+  if (!finite_all((nonfinite_sum(r.normal) + nonfinite_sum(r.point_a)) +
+                  (nonfinite_sum(r.point_b) + nonfinite_term(distance))))
     return invalid();
   return r;
 }

@@ -13,6 +13,7 @@
 //    shapes, 1e4 from the origin, NaN input: no NaN and no wrong verdict.
 //  - Determinism: a hash of every output bit over a fixed mixed set, pinned.
 #include "gyro/convex.hpp"
+#include "gyro/runtime.hpp"
 #include "reference.hpp"
 #include "workloads.hpp"
 
@@ -432,6 +433,56 @@ TEST(GjkDegenerate, IterationLimitIsReportedNotSeparated) {
   const ConvexResult e = convex_penetration(s, at(0, 0, 0), s, at(0.5f, 0.3f, 0.1f), o);
   EXPECT_EQ(e.status, ConvexStatus::iteration_limit);
   EXPECT_TRUE(finite_result(e));
+}
+
+// ---- the batch query ----
+
+TEST(GjkBatch, BoxPairsMatchScalarIntersectAtEveryLevel) {
+  // N1 pairs plus hand-made ones: invalid (NaN, negative size), huge coordinates
+  // and a non-rotation (the scalar fallback), at a count that leaves a tail at every width.
+  const std::size_t n1 = 20000 + 13;
+  testing::BoxPairs p = testing::n1_pairs(n1);
+  const std::size_t n = n1;
+  p.a.hx[0] = -1.0f;                    // negative size
+  p.b.cy[1] = std::nanf("");            // NaN position
+  p.a.cx[2] = 3e37f, p.b.cx[2] = 3e37f;  // beyond the batch's range
+  p.b.r[0][3] = 5.0f;                   // not a rotation
+  ConvexBoxPairs pairs;
+  auto fill = [](const testing::BoxSet& s, const float* (&c)[3], const float* (&h)[3], const float* (&r)[9]) {
+    c[0] = s.cx.data(), c[1] = s.cy.data(), c[2] = s.cz.data();
+    h[0] = s.hx.data(), h[1] = s.hy.data(), h[2] = s.hz.data();
+    for (int k = 0; k < 3; ++k)
+      for (int col = 0; col < 3; ++col) r[3 * k + col] = s.r[3 * col + k].data();
+  };
+  fill(p.a, pairs.a_center, pairs.a_half, pairs.a_rot);
+  fill(p.b, pairs.b_center, pairs.b_half, pairs.b_rot);
+  std::vector<ConvexStatus> ref(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    ConvexShape a, b;
+    a.type = b.type = ConvexType::box;
+    a.half_extents = {p.a.hx[i], p.a.hy[i], p.a.hz[i]};
+    b.half_extents = {p.b.hx[i], p.b.hy[i], p.b.hz[i]};
+    ref[i] = convex_intersect(a, pose_of(p.a, i), b, pose_of(p.b, i)).status;
+  }
+  EXPECT_EQ(ref[0], ConvexStatus::invalid_input);
+  EXPECT_EQ(ref[1], ConvexStatus::invalid_input);
+  std::size_t overlapping_pairs = 0;
+  for (ConvexStatus st : ref) overlapping_pairs += overlapping(st);
+  EXPECT_GT(overlapping_pairs, 100u);
+  const SimdLevel levels[] = {SimdLevel::scalar, SimdLevel::sse2, SimdLevel::avx2, SimdLevel::avx512, SimdLevel::neon};
+  int ran = 0;
+  for (SimdLevel level : levels) {
+    if (!simd_level_available(level)) continue;
+    set_simd_level(level);
+    ++ran;
+    std::vector<ConvexStatus> out(n, ConvexStatus::iteration_limit);
+    convex_intersect_batch(pairs, n, out.data());
+    std::size_t differ = 0;
+    for (std::size_t i = 0; i < n; ++i) differ += out[i] != ref[i];
+    EXPECT_EQ(differ, 0u) << simd_level_name(level);
+  }
+  set_simd_level(SimdLevel::automatic);
+  EXPECT_GE(ran, 1);
 }
 
 // ---- determinism ----
