@@ -32,10 +32,10 @@ inline D3 cross3(D3 a, D3 b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * 
 inline double len3(D3 a) { return std::sqrt(dot3(a, a)); }
 
 struct HFace {
-  int v[3];
-  int adj[3], adj_edge[3];  // neighbour across edge v[i] -> v[i+1], and its edge index
-  D3 n;
-  double d;
+  int v[3] = {0, 0, 0};
+  int adj[3] = {-1, -1, -1}, adj_edge[3] = {0, 0, 0};  // neighbour across edge v[i] -> v[i+1], and its edge index
+  D3 n{0.0, 0.0, 0.0};
+  double d = 0.0;
   bool dead = false;
   std::vector<int> conflict;  // points above this face (by more than tol), in index order
 };
