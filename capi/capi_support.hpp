@@ -5,6 +5,8 @@
 #include "gyro.h"
 
 #include "core/error.hpp"
+#include "core/validate.hpp"
+#include "gyro/math_vec.hpp"
 #include "gyro/batch_overlap.hpp"
 #include "gyro/batch_raycast.hpp"
 
@@ -30,6 +32,21 @@ inline Status check_count(int32_t n, const char* name) {
 
 inline Status require(const void* p, const char* name) {
   return p ? Status::ok : detail::fail(Status::null_argument, "%s is null", name);
+}
+
+// Vectors cross the boundary by value; checks shared by the world and soft-body calls.
+inline vec3 v3(gyro_vec3 v) { return {v.x, v.y, v.z}; }
+inline gyro_vec3 c_v3(const vec3& v) { return {v.x, v.y, v.z}; }
+
+inline Status check_finite(float v, const char* name) {
+  return detail::is_finite(v) ? Status::ok : detail::fail(Status::non_finite, "%s = %g is not finite", name, double(v));
+}
+inline Status check_finite(gyro_vec3 v, const char* name) {
+  if (detail::is_finite(v.x) && detail::is_finite(v.y) && detail::is_finite(v.z)) return Status::ok;
+  return detail::fail(Status::non_finite, "%s has a NaN or infinite component", name);
+}
+inline Status check_bool(uint32_t v, const char* name) {
+  return v <= 1 ? Status::ok : detail::fail(Status::invalid_argument, "%s = %u: booleans are 0 or 1", name, v);
 }
 
 // The C views have exactly the C++ views' layout (asserted below), so they convert by copy.

@@ -19,13 +19,18 @@
 #include <cstddef>
 #include <cstring>
 #include <utility>
+#include <type_traits>
 #include <vector>
 
 namespace {
 
 using gyro::Status;
 using gyro::capi::guarded;
+using gyro::capi::c_v3;
+using gyro::capi::check_bool;
+using gyro::capi::check_finite;
 using gyro::capi::require;
+using gyro::capi::v3;
 using gyro::detail::fail;
 using gyro::detail::is_finite;
 using gyro::detail::is_nan;
@@ -55,18 +60,9 @@ constexpr int64_t kMaxParticles = int64_t(1) << 24;
 
 gyro::SoftBodyId id_of(gyro_soft_body_id id) { return {id.index, id.generation}; }
 gyro_soft_body_id c_id(gyro::SoftBodyId id) { return {id.index, id.generation}; }
-gyro::vec3 v3(gyro_vec3 v) { return {v.x, v.y, v.z}; }
-gyro_vec3 c_v3(const gyro::vec3& v) { return {v.x, v.y, v.z}; }
 gyro::SpringConstants constants_of(gyro_spring_constants c) { return {c.stiffness, c.damping}; }
 gyro_spring_constants c_constants(const gyro::SpringConstants& c) { return {c.stiffness, c.damping}; }
 
-Status check_finite(float v, const char* name) {
-  return is_finite(v) ? Status::ok : fail(Status::non_finite, "%s = %g is not finite", name, double(v));
-}
-Status check_finite(gyro_vec3 v, const char* name) {
-  if (is_finite(v.x) && is_finite(v.y) && is_finite(v.z)) return Status::ok;
-  return fail(Status::non_finite, "%s has a NaN or infinite component", name);
-}
 /// Finite and > 0 (sizes, masses).
 Status check_positive(float v, const char* name) {
   GYRO_TRY(check_finite(v, name));
@@ -76,9 +72,6 @@ Status check_positive(float v, const char* name) {
 Status check_non_negative(float v, const char* name) {
   GYRO_TRY(check_finite(v, name));
   return v >= 0.0f ? Status::ok : fail(Status::invalid_argument, "%s = %g must be >= 0", name, double(v));
-}
-Status check_bool(uint32_t v, const char* name) {
-  return v <= 1 ? Status::ok : fail(Status::invalid_argument, "%s = %u: booleans are 0 or 1", name, v);
 }
 
 /// Stiffness > 0 or +infinity (NaN: non_finite; zero, negative or -infinity: invalid);
@@ -120,6 +113,17 @@ Status check_particle(const gyro::SoftBody& b, uint32_t index, const char* name)
   const std::size_t n = b.particle_count();
   if (index < n) return Status::ok;
   return fail(Status::invalid_argument, "%s = %u is out of range (the body has %zu particles)", name, index, n);
+}
+
+/// A per-particle call: the soft body and the particle checked (stale id, index range), then
+/// fn(body). A const world gives fn a const body.
+template <class W, class F> gyro_status on_particle(W* world, gyro_soft_body_id id, uint32_t particle, F&& fn) {
+  return guarded([&]() -> Status {
+    std::conditional_t<std::is_const_v<W>, const gyro::SoftBody, gyro::SoftBody>* b = nullptr;
+    GYRO_TRY(require_soft(world, id, &b));
+    GYRO_TRY(check_particle(*b, particle, "particle"));
+    return fn(*b);
+  });
 }
 
 Status check_family(gyro_spring_family family) {
@@ -466,42 +470,26 @@ GYRO_API gyro_status gyro_soft_body_set_mass(gyro_world* world, gyro_soft_body_i
 
 GYRO_API gyro_status gyro_soft_body_set_particle_mass(gyro_world* world, gyro_soft_body_id id, uint32_t particle,
                                                       float mass) {
-  return guarded([&]() -> Status {
-    gyro::SoftBody* b = nullptr;
-    GYRO_TRY(require_soft(world, id, &b));
-    GYRO_TRY(check_particle(*b, particle, "particle"));
+  return on_particle(world, id, particle, [&](gyro::SoftBody& b) -> Status {
     GYRO_TRY(check_positive(mass, "mass"));
-    return b->set_particle_mass(particle, mass);
+    return b.set_particle_mass(particle, mass);
   });
 }
 
 GYRO_API gyro_status gyro_soft_body_pin(gyro_world* world, gyro_soft_body_id id, uint32_t particle) {
-  return guarded([&]() -> Status {
-    gyro::SoftBody* b = nullptr;
-    GYRO_TRY(require_soft(world, id, &b));
-    GYRO_TRY(check_particle(*b, particle, "particle"));
-    return b->pin(particle);
-  });
+  return on_particle(world, id, particle, [&](gyro::SoftBody& b) { return b.pin(particle); });
 }
 
 GYRO_API gyro_status gyro_soft_body_unpin(gyro_world* world, gyro_soft_body_id id, uint32_t particle) {
-  return guarded([&]() -> Status {
-    gyro::SoftBody* b = nullptr;
-    GYRO_TRY(require_soft(world, id, &b));
-    GYRO_TRY(check_particle(*b, particle, "particle"));
-    return b->unpin(particle);
-  });
+  return on_particle(world, id, particle, [&](gyro::SoftBody& b) { return b.unpin(particle); });
 }
 
 GYRO_API gyro_status gyro_soft_body_is_pinned(const gyro_world* world, gyro_soft_body_id id, uint32_t particle,
                                               uint32_t* out) {
-  return guarded([&]() -> Status {
-    const gyro::SoftBody* b = nullptr;
-    GYRO_TRY(require_soft(world, id, &b));
-    GYRO_TRY(check_particle(*b, particle, "particle"));
+  return on_particle(world, id, particle, [&](const gyro::SoftBody& b) -> Status {
     GYRO_TRY(require(out, "out"));
     bool pinned = false;
-    GYRO_TRY(b->is_pinned(particle, &pinned));
+    GYRO_TRY(b.is_pinned(particle, &pinned));
     *out = pinned ? 1u : 0u;
     return Status::ok;
   });
@@ -509,13 +497,10 @@ GYRO_API gyro_status gyro_soft_body_is_pinned(const gyro_world* world, gyro_soft
 
 GYRO_API gyro_status gyro_soft_body_get_position(const gyro_world* world, gyro_soft_body_id id, uint32_t particle,
                                                  gyro_vec3* out) {
-  return guarded([&]() -> Status {
-    const gyro::SoftBody* b = nullptr;
-    GYRO_TRY(require_soft(world, id, &b));
-    GYRO_TRY(check_particle(*b, particle, "particle"));
+  return on_particle(world, id, particle, [&](const gyro::SoftBody& b) -> Status {
     GYRO_TRY(require(out, "out"));
     gyro::vec3 p;
-    GYRO_TRY(b->get_position(particle, &p));
+    GYRO_TRY(b.get_position(particle, &p));
     *out = c_v3(p);
     return Status::ok;
   });
@@ -523,24 +508,18 @@ GYRO_API gyro_status gyro_soft_body_get_position(const gyro_world* world, gyro_s
 
 GYRO_API gyro_status gyro_soft_body_set_position(gyro_world* world, gyro_soft_body_id id, uint32_t particle,
                                                  gyro_vec3 position) {
-  return guarded([&]() -> Status {
-    gyro::SoftBody* b = nullptr;
-    GYRO_TRY(require_soft(world, id, &b));
-    GYRO_TRY(check_particle(*b, particle, "particle"));
+  return on_particle(world, id, particle, [&](gyro::SoftBody& b) -> Status {
     GYRO_TRY(check_finite(position, "position"));
-    return b->set_position(particle, v3(position));
+    return b.set_position(particle, v3(position));
   });
 }
 
 GYRO_API gyro_status gyro_soft_body_get_velocity(const gyro_world* world, gyro_soft_body_id id, uint32_t particle,
                                                  gyro_vec3* out) {
-  return guarded([&]() -> Status {
-    const gyro::SoftBody* b = nullptr;
-    GYRO_TRY(require_soft(world, id, &b));
-    GYRO_TRY(check_particle(*b, particle, "particle"));
+  return on_particle(world, id, particle, [&](const gyro::SoftBody& b) -> Status {
     GYRO_TRY(require(out, "out"));
     gyro::vec3 v;
-    GYRO_TRY(b->get_velocity(particle, &v));
+    GYRO_TRY(b.get_velocity(particle, &v));
     *out = c_v3(v);
     return Status::ok;
   });
@@ -548,12 +527,9 @@ GYRO_API gyro_status gyro_soft_body_get_velocity(const gyro_world* world, gyro_s
 
 GYRO_API gyro_status gyro_soft_body_set_velocity(gyro_world* world, gyro_soft_body_id id, uint32_t particle,
                                                  gyro_vec3 velocity) {
-  return guarded([&]() -> Status {
-    gyro::SoftBody* b = nullptr;
-    GYRO_TRY(require_soft(world, id, &b));
-    GYRO_TRY(check_particle(*b, particle, "particle"));
+  return on_particle(world, id, particle, [&](gyro::SoftBody& b) -> Status {
     GYRO_TRY(check_finite(velocity, "velocity"));
-    return b->set_velocity(particle, v3(velocity));
+    return b.set_velocity(particle, v3(velocity));
   });
 }
 

@@ -25,7 +25,11 @@ namespace {
 
 using gyro::Status;
 using gyro::capi::guarded;
+using gyro::capi::c_v3;
+using gyro::capi::check_bool;
+using gyro::capi::check_finite;
 using gyro::capi::require;
+using gyro::capi::v3;
 using gyro::detail::fail;
 using gyro::detail::is_finite;
 
@@ -50,24 +54,12 @@ static_assert(uint32_t(gyro::ContactModel::soft_step) == GYRO_CONTACT_SOFT_STEP 
 
 gyro::BodyId id_of(gyro_body_id id) { return {id.index, id.generation}; }
 gyro_body_id c_id(gyro::BodyId id) { return {id.index, id.generation}; }
-gyro::vec3 v3(gyro_vec3 v) { return {v.x, v.y, v.z}; }
-gyro_vec3 c_v3(const gyro::vec3& v) { return {v.x, v.y, v.z}; }
 gyro::quat q4(gyro_quat q) { return {q.x, q.y, q.z, q.w}; }
 gyro_quat c_q4(const gyro::quat& q) { return {q.x, q.y, q.z, q.w}; }
 
-Status check_finite(float v, const char* name) {
-  return is_finite(v) ? Status::ok : fail(Status::non_finite, "%s is not finite", name);
-}
-Status check_finite(gyro_vec3 v, const char* name) {
-  if (is_finite(v.x) && is_finite(v.y) && is_finite(v.z)) return Status::ok;
-  return fail(Status::non_finite, "%s has a NaN or infinite component", name);
-}
 Status check_finite(gyro_quat q, const char* name) {
   if (is_finite(q.x) && is_finite(q.y) && is_finite(q.z) && is_finite(q.w)) return Status::ok;
   return fail(Status::non_finite, "%s has a NaN or infinite component", name);
-}
-Status check_bool(uint32_t v, const char* name) {
-  return v <= 1 ? Status::ok : fail(Status::invalid_argument, "%s = %u: booleans are 0 or 1", name, v);
 }
 
 Status require_world(const gyro_world* w) { return require(w, "world"); }

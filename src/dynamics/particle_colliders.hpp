@@ -5,6 +5,7 @@
 
 #include "core/state_hash.hpp"
 #include "gyro/shapes.hpp"
+#include "gyro/status.hpp"
 
 #include <cstdint>
 
@@ -39,6 +40,14 @@ vec3 push_out(const Collider& c, const vec3& p, float extra = 0.0f, vec3* normal
 
 /// An axis-aligned box around c (planes: unbounded, reported by returning false).
 bool collider_bounds(const Collider& c, vec3* lo, vec3* hi);
+
+/// Checks a shape and makes it a collider (sizes >= 0, finite; an OBB's orientation
+/// orthonormal to 1e-3; a plane's normal non-zero, normalised with its distance). On failure
+/// *out is untouched and gyro::last_error() says why.
+Status to_collider(const Sphere& sphere, Collider* out);
+Status to_collider(const AABB& box, Collider* out);
+Status to_collider(const OBB& box, Collider* out);
+Status to_collider(const Plane& plane, Collider* out);
 
 void hash_collider(const Collider& c, StateHasher& h);
 

@@ -252,50 +252,26 @@ Status ParticleSystem::add_force(ParticleId id, const vec3& force) {
 // ---------------------------------------------------------------- colliders
 
 Status ParticleSystem::add_collider(const Sphere& sphere, uint32_t* index) {
-  if (!gyro::is_finite(sphere.center) || !is_finite(sphere.radius)) return fail(Status::non_finite, "sphere collider is not finite");
-  if (sphere.radius < 0.0f) return fail(Status::invalid_argument, "sphere collider radius %g is negative", double(sphere.radius));
   Collider c;
-  c.kind = ColliderKind::sphere, c.sphere = sphere;
+  GYRO_TRY(detail::to_collider(sphere, &c));
   return impl_->add_collider(c, index);
 }
 
 Status ParticleSystem::add_collider(const AABB& box, uint32_t* index) {
-  if (!gyro::is_finite(box.center) || !gyro::is_finite(box.half_extents)) return fail(Status::non_finite, "AABB collider is not finite");
-  if (box.half_extents.x < 0.0f || box.half_extents.y < 0.0f || box.half_extents.z < 0.0f)
-    return fail(Status::invalid_argument, "AABB collider has a negative half extent");
   Collider c;
-  c.kind = ColliderKind::aabb, c.aabb = box;
+  GYRO_TRY(detail::to_collider(box, &c));
   return impl_->add_collider(c, index);
 }
 
 Status ParticleSystem::add_collider(const OBB& box, uint32_t* index) {
-  bool finite = gyro::is_finite(box.center) && gyro::is_finite(box.half_extents);
-  for (int r = 0; r < 3; ++r)
-    for (int k = 0; k < 3; ++k) finite = finite && is_finite(box.orientation[r][k]);
-  if (!finite) return fail(Status::non_finite, "OBB collider is not finite");
-  if (box.half_extents.x < 0.0f || box.half_extents.y < 0.0f || box.half_extents.z < 0.0f)
-    return fail(Status::invalid_argument, "OBB collider has a negative half extent");
-  for (int r = 0; r < 3; ++r) {
-    for (int q = r; q < 3; ++q) {
-      const vec3 a{box.orientation[r][0], box.orientation[r][1], box.orientation[r][2]};
-      const vec3 b{box.orientation[q][0], box.orientation[q][1], box.orientation[q][2]};
-      const float want = r == q ? 1.0f : 0.0f;
-      if (!(std::abs(dot(a, b) - want) <= 1e-3f))
-        return fail(Status::invalid_argument, "OBB collider orientation is not orthonormal (rows %d, %d)", r, q);
-    }
-  }
   Collider c;
-  c.kind = ColliderKind::obb, c.obb = box;
+  GYRO_TRY(detail::to_collider(box, &c));
   return impl_->add_collider(c, index);
 }
 
 Status ParticleSystem::add_collider(const Plane& plane, uint32_t* index) {
-  if (!gyro::is_finite(plane.normal) || !is_finite(plane.distance)) return fail(Status::non_finite, "plane collider is not finite");
-  const float len = length(plane.normal);
-  if (!(len > 0.0f) || !is_finite(len)) return fail(Status::invalid_argument, "plane collider normal is zero or too large");
   Collider c;
-  c.kind = ColliderKind::plane;
-  c.plane = {plane.normal / len, plane.distance / len};
+  GYRO_TRY(detail::to_collider(plane, &c));
   return impl_->add_collider(c, index);
 }
 

@@ -106,6 +106,7 @@ struct SoftBody::Impl {
   std::vector<uint32_t> oa, ob;
   std::vector<float> orest, ostiff, ocompl, odamp, olambda;
   std::vector<std::size_t> color_chunk;  // runs per parallel chunk, per colour
+  bool any_infinite = false, any_damped = false;  // over the springs (set with the constants)
 
   std::vector<SoftCollider> colliders;
   std::size_t live_colliders = 0;
@@ -146,11 +147,14 @@ struct SoftBody::Impl {
   void refresh_constants() {
     const std::size_t m = plan.order.size();
     ostiff.resize(m), ocompl.resize(m), odamp.resize(m);
+    any_infinite = any_damped = false;
     for (std::size_t k = 0; k < m; ++k) {
       const SpringConstants& c = families[family[plan.order[k]]];
       ostiff[k] = c.stiffness;
       ocompl[k] = std::isinf(c.stiffness) ? 0.0f : 1.0f / c.stiffness;
       odamp[k] = c.damping;
+      any_infinite = any_infinite || std::isinf(c.stiffness);
+      any_damped = any_damped || c.damping > 0.0f;
     }
   }
 
@@ -171,11 +175,6 @@ struct SoftBody::Impl {
     plan_dirty = false;
   }
 
-  bool uses_infinite_stiffness() const {
-    for (uint8_t f : family)
-      if (std::isinf(families[f].stiffness)) return true;
-    return false;
-  }
 
   Status add_spring(uint32_t a, uint32_t b, float rest_length, SpringFamily f) {
     sa.push_back(a), sb.push_back(b), family.push_back(static_cast<uint8_t>(f));
@@ -385,11 +384,11 @@ void SoftBody::Impl::collide(std::size_t i, float h) {
 Status SoftBody::Impl::step(float dt) {
   if (!is_finite(dt)) return fail(Status::non_finite, "soft body step dt is not finite");
   if (!(dt > 0.0f)) return fail(Status::invalid_argument, "soft body step dt %g is not > 0", double(dt));
-  if (settings.model == SoftModel::springs && uses_infinite_stiffness())
-    return fail(Status::invalid_argument, "the springs model needs finite stiffness (a family is +infinity)");
   const std::size_t n = count();
   if (n == 0) return Status::ok;
-  if (plan_dirty) rebuild_plan();
+  if (plan_dirty) rebuild_plan();  // derived state only: a failing step below still changes nothing
+  if (settings.model == SoftModel::springs && any_infinite)
+    return fail(Status::invalid_argument, "the springs model needs finite stiffness (a family is +infinity)");
 
   const uint32_t substeps = settings.substeps;
   const float h = dt / static_cast<float>(substeps);
@@ -407,7 +406,7 @@ Status SoftBody::Impl::step(float dt) {
   const bool xpbd = settings.model == SoftModel::xpbd;
   const uint32_t iterations = xpbd ? settings.iterations : 1;
   g.accumulate = iterations > 1 ? 1u : 0u;
-  g.damped = std::any_of(odamp.begin(), odamp.end(), [](float b) { return b > 0.0f; }) ? 1u : 0u;
+  g.damped = any_damped ? 1u : 0u;
 
   auto* predict = GYRO_DISPATCH(soft_predict);
   auto* update_velocity = GYRO_DISPATCH(soft_update_velocity);
@@ -873,45 +872,26 @@ Status SoftBody::add_hinge_joint(uint32_t a0, uint32_t b0, uint32_t a1, uint32_t
 // ---------------------------------------------------------------- colliders
 
 Status SoftBody::add_collider(const Sphere& sphere, uint32_t* index) {
-  if (!gyro::is_finite(sphere.center) || !is_finite(sphere.radius)) return fail(Status::non_finite, "sphere collider is not finite");
-  if (sphere.radius < 0.0f) return fail(Status::invalid_argument, "sphere collider radius %g is negative", double(sphere.radius));
   SoftCollider c;
-  c.shape.kind = ColliderKind::sphere, c.shape.sphere = sphere;
+  GYRO_TRY(detail::to_collider(sphere, &c.shape));
   return impl_->add_collider(c, index);
 }
 
 Status SoftBody::add_collider(const AABB& box, uint32_t* index) {
-  if (!gyro::is_finite(box.center) || !gyro::is_finite(box.half_extents)) return fail(Status::non_finite, "AABB collider is not finite");
-  if (box.half_extents.x < 0.0f || box.half_extents.y < 0.0f || box.half_extents.z < 0.0f)
-    return fail(Status::invalid_argument, "AABB collider has a negative half extent");
   SoftCollider c;
-  c.shape.kind = ColliderKind::aabb, c.shape.aabb = box;
+  GYRO_TRY(detail::to_collider(box, &c.shape));
   return impl_->add_collider(c, index);
 }
 
 Status SoftBody::add_collider(const OBB& box, uint32_t* index) {
-  bool finite = gyro::is_finite(box.center) && gyro::is_finite(box.half_extents);
-  for (int k = 0; k < 9; ++k) finite = finite && is_finite(box.orientation.data()[k]);
-  if (!finite) return fail(Status::non_finite, "OBB collider is not finite");
-  if (box.half_extents.x < 0.0f || box.half_extents.y < 0.0f || box.half_extents.z < 0.0f)
-    return fail(Status::invalid_argument, "OBB collider has a negative half extent");
-  const mat3& r = box.orientation;
-  for (int a = 0; a < 3; ++a)
-    for (int b = 0; b < 3; ++b) {
-      const float d = r.m[a][0] * r.m[b][0] + r.m[a][1] * r.m[b][1] + r.m[a][2] * r.m[b][2];
-      if (std::abs(d - (a == b ? 1.0f : 0.0f)) > 1e-3f) return fail(Status::invalid_argument, "OBB collider orientation is not orthonormal");
-    }
   SoftCollider c;
-  c.shape.kind = ColliderKind::obb, c.shape.obb = box;
+  GYRO_TRY(detail::to_collider(box, &c.shape));
   return impl_->add_collider(c, index);
 }
 
 Status SoftBody::add_collider(const Plane& plane, uint32_t* index) {
-  if (!gyro::is_finite(plane.normal) || !is_finite(plane.distance)) return fail(Status::non_finite, "plane collider is not finite");
-  const float len = length(plane.normal);
-  if (!(len > 0.0f)) return fail(Status::invalid_argument, "plane collider normal is zero");
   SoftCollider c;
-  c.shape.kind = ColliderKind::plane, c.shape.plane = {plane.normal / len, plane.distance / len};
+  GYRO_TRY(detail::to_collider(plane, &c.shape));
   return impl_->add_collider(c, index);
 }
 
