@@ -20,6 +20,8 @@
 #include "gyro/triangle_mesh.hpp"
 
 #include <algorithm>
+#include <initializer_list>
+#include <utility>
 #include <cmath>
 #include <span>
 #include <vector>
@@ -508,11 +510,11 @@ void outward(Network& net, uint32_t a, uint32_t b, uint32_t c, const vec3& insid
   net.triangles.insert(net.triangles.end(), {a, b, c});
 }
 
-Status assign(SoftBody* out, SoftBody::Impl& impl, const Network& net, const SpringConstants* families) {
+/// Loads a built network into a body and sets the constants of the families the builder
+/// defines (the others keep theirs).
+void assign(SoftBody::Impl& impl, const Network& net, std::initializer_list<std::pair<SpringFamily, SpringConstants>> families) {
   impl.load(net);
-  for (uint32_t f = 0; f < kSpringFamilyCount; ++f) impl.families[f] = families[f];
-  (void)out;
-  return Status::ok;
+  for (const auto& [f, c] : families) impl.families[static_cast<uint32_t>(f)] = c;
 }
 
 }  // namespace
@@ -609,9 +611,8 @@ Status SoftBody::make_cloth(const ClothDef& def, SoftBody* out) {
       if (def.both_diagonals || odd(i, j)) net.triangles.insert(net.triangles.end(), {p00, p11, p10, p00, p01, p11});
       else net.triangles.insert(net.triangles.end(), {p00, p01, p10, p10, p01, p11});
     }
-  const SpringConstants families[kSpringFamilyCount] = {def.structural, def.shear, def.bend_constants,
-                                                        out->impl_->families[3], out->impl_->families[4]};
-  GYRO_TRY(assign(out, *out->impl_, net, families));
+  assign(*out->impl_, net,
+         {{SpringFamily::structural, def.structural}, {SpringFamily::shear, def.shear}, {SpringFamily::bend, def.bend_constants}});
   out->impl_->grid_nx = nx, out->impl_->grid_nz = nz;
   return Status::ok;
 }
@@ -644,9 +645,8 @@ Status SoftBody::make_cube(const SoftCubeDef& def, SoftBody* out) {
       outward(net, q[0], q[1], q[3], def.center);
       outward(net, q[0], q[3], q[2], def.center);
     }
-  const SpringConstants families[kSpringFamilyCount] = {def.structural, def.shear, def.bend, out->impl_->families[3],
-                                                        out->impl_->families[4]};
-  return assign(out, *out->impl_, net, families);
+  assign(*out->impl_, net, {{SpringFamily::structural, def.structural}, {SpringFamily::shear, def.shear}, {SpringFamily::bend, def.bend}});
+  return Status::ok;
 }
 
 Status SoftBody::make_from_mesh(const SoftMeshDef& def, SoftBody* out) {
@@ -705,12 +705,8 @@ Status SoftBody::make_from_mesh(const SoftMeshDef& def, SoftBody* out) {
   }
   for (uint32_t v = 0; v < nv; ++v) net.spring(v, nv, SpringFamily::radial);
   net.triangles.assign(def.indices, def.indices + std::size_t{def.triangle_count} * 3);
-  const SpringConstants families[kSpringFamilyCount] = {out->impl_->families[0], out->impl_->families[1], def.bend, def.radial,
-                                                        out->impl_->families[4]};
-  SpringConstants fam[kSpringFamilyCount];
-  std::copy(families, families + kSpringFamilyCount, fam);
-  fam[0] = def.structural;
-  return assign(out, *out->impl_, net, fam);
+  assign(*out->impl_, net, {{SpringFamily::structural, def.structural}, {SpringFamily::bend, def.bend}, {SpringFamily::radial, def.radial}});
+  return Status::ok;
 }
 
 // ---------------------------------------------------------------- lifetime, settings, families
@@ -931,12 +927,18 @@ Status detail::SoftAccess::step_with(SoftBody& body, float dt, std::span<const C
   return s;
 }
 
-bool detail::SoftAccess::bounds(const SoftBody& body, float margin, vec3* lo, vec3* hi) {
+bool detail::SoftAccess::step_bounds(const SoftBody& body, float dt, vec3* lo, vec3* hi) {
   const SoftBody::Impl& m = *body.impl_;
   if (m.count() == 0) return false;
   vec3 a = m.position(0), b = a;
-  for (std::size_t i = 1; i < m.count(); ++i) a = min(a, m.position(i)), b = max(b, m.position(i));
-  const vec3 pad{margin, margin, margin};
+  float speed2 = 0.0f;
+  for (std::size_t i = 0; i < m.count(); ++i) {
+    a = min(a, m.position(i)), b = max(b, m.position(i));
+    const float q = m.vx[i] * m.vx[i] + m.vy[i] * m.vy[i] + m.vz[i] * m.vz[i];
+    speed2 = q > speed2 ? q : speed2;
+  }
+  const float reach = (std::sqrt(speed2) + length(m.settings.gravity) * dt) * dt + m.settings.thickness + 0.01f;
+  const vec3 pad{reach, reach, reach};
   *lo = a - pad, *hi = b + pad;
   return true;
 }

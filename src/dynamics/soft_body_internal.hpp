@@ -21,8 +21,9 @@ struct MeshCollider {
 struct SoftAccess {
   /// step(dt) with these colliders besides the body's own (valid during the call only).
   static Status step_with(SoftBody& body, float dt, std::span<const Collider> colliders, std::span<const MeshCollider> meshes);
-  /// The box around every particle now, widened by `margin` (false for an empty body).
-  static bool bounds(const SoftBody& body, float margin, vec3* lo, vec3* hi);
+  /// A box the particles cannot leave over a step of dt: around every particle now, widened
+  /// by the fastest one's travel (speed and gravity) and the thickness (false when empty).
+  static bool step_bounds(const SoftBody& body, float dt, vec3* lo, vec3* hi);
   static void hash_into(const SoftBody& body, StateHasher& h);
 };
 

@@ -50,18 +50,10 @@ void World::Impl::step_soft_bodies(float dt) {
   detail::BodyStore& s = bodies;
   const uint32_t n = static_cast<uint32_t>(s.size());
   for (auto& body : soft_bodies) {
-    // The bodies whose boxes meet the soft body's box, widened by its fastest particle's
-    // travel over the step (and its thickness), become its colliders, in slot order.
-    const SoftView v = body->view();
-    float speed2 = 0.0f;
-    for (std::size_t i = 0; i < v.count; ++i) {
-      const float q = v.vx[i] * v.vx[i] + v.vy[i] * v.vy[i] + v.vz[i] * v.vz[i];
-      speed2 = q > speed2 ? q : speed2;
-    }
-    const float grav = length(body->settings().gravity);
+    // The bodies whose boxes meet the box the soft body can reach this step become its
+    // colliders, in slot order.
     vec3 lo, hi;
-    if (!detail::SoftAccess::bounds(*body, (std::sqrt(speed2) + grav * dt) * dt + body->settings().thickness + 0.01f, &lo, &hi))
-      continue;
+    if (!detail::SoftAccess::step_bounds(*body, dt, &lo, &hi)) continue;
     soft_shapes.clear();
     soft_meshes.clear();
     for (uint32_t i = 0; i < n; ++i) {
