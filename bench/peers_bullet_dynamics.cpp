@@ -12,6 +12,7 @@
 
 #if defined(GYRO_BENCH_HAS_BULLET)
 #include <btBulletDynamicsCommon.h>
+#include <BulletCollision/CollisionShapes/btConvexHullShape.h>
 #endif
 
 namespace gyro::bench {
@@ -36,7 +37,8 @@ struct BulletWorld {
   btDbvtBroadphase broadphase;
   btSequentialImpulseConstraintSolver solver;
   btDiscreteDynamicsWorld world{&dispatcher, &broadphase, &solver, &config};
-  std::unique_ptr<btBoxShape> box_shape, ground_shape;
+  std::unique_ptr<btBoxShape> ground_shape;
+  std::unique_ptr<btConvexShape> box_shape;
   std::vector<std::unique_ptr<btRigidBody>> boxes;
   std::unique_ptr<btRigidBody> ground;
 
@@ -47,7 +49,7 @@ struct BulletWorld {
 
   // No motion state: the bodies' own world transforms are what we read back, never an
   // interpolated copy.
-  std::unique_ptr<btRigidBody> make_body(btScalar mass, btBoxShape* shape, const btVector3& at, const PyramidScene& s) {
+  std::unique_ptr<btRigidBody> make_body(btScalar mass, btConvexShape* shape, const btVector3& at, const PyramidScene& s) {
     btVector3 inertia(0, 0, 0);
     if (mass > 0) shape->calculateLocalInertia(mass, inertia);
     btRigidBody::btRigidBodyConstructionInfo info(mass, nullptr, shape, inertia);
@@ -65,7 +67,15 @@ struct BulletWorld {
     world.getSolverInfo().m_numIterations = 10;
     ground_shape = std::make_unique<btBoxShape>(btVector3(s.ground_half[0], s.ground_half[1], s.ground_half[2]));
     ground = make_body(0, ground_shape.get(), btVector3(s.ground_centre[0], s.ground_centre[1], s.ground_centre[2]), s);
-    box_shape = std::make_unique<btBoxShape>(btVector3(s.half, s.half, s.half));
+    if (s.hull_boxes) {
+      auto hull = std::make_unique<btConvexHullShape>();
+      const btScalar h = s.half - hull->getMargin();  // the margin rounds the corners outside
+      for (int k = 0; k < 8; ++k) hull->addPoint(btVector3((k & 1) ? h : -h, (k & 2) ? h : -h, (k & 4) ? h : -h), false);
+      hull->recalcLocalAabb();
+      box_shape = std::move(hull);
+    } else {
+      box_shape = std::make_unique<btBoxShape>(btVector3(s.half, s.half, s.half));
+    }
     boxes.reserve(s.size());
     for (std::size_t i = 0; i < s.size(); ++i)
       boxes.push_back(make_body(s.mass, box_shape.get(), btVector3(s.x[i], s.y[i], s.z[i]), s));

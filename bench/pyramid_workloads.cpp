@@ -7,6 +7,8 @@
 // ground (gyro's 15-axis SAT), and the change of energy per box.
 #include "pyramid_workloads.hpp"
 
+#include "gyro/convex.hpp"
+
 #include "gyro/batch_overlap.hpp"
 #include "gyro/world.hpp"
 #include "scenario.hpp"
@@ -157,9 +159,14 @@ struct GyroModel {
   WorldDef def;
 };
 
-std::vector<GyroModel> gyro_models() {
+std::vector<GyroModel> gyro_models(const PyramidScene& s) {
   WorldDef soft;  // the default: soft step, 4 sub-steps
   soft.enable_sleep = false;
+  if (s.hull_boxes) {  // the convex manifold models side by side
+    WorldDef incremental = soft;
+    incremental.convex_manifold = ConvexManifold::incremental;
+    return {{"soft_step_clipping", soft}, {"soft_step_incremental", incremental}};
+  }
   WorldDef book = soft;  // the appendix's Baumgarte model, as the Cookbook runs it
   book.contact_model = ContactModel::baumgarte;
   book.substeps = 1;
@@ -190,6 +197,18 @@ bool gyro_run_pyramid(const PyramidScene& s, const WorldDef& def, PyramidRun& ou
   BodyDef box;
   box.shape.type = BodyShape::box;
   box.shape.half_extents = {s.half, s.half, s.half};
+  ConvexHull hull;
+  if (s.hull_boxes) {
+    vec3 corners[8];
+    for (int k = 0; k < 8; ++k)
+      corners[k] = {(k & 1) ? s.half : -s.half, (k & 2) ? s.half : -s.half, (k & 4) ? s.half : -s.half};
+    if (build_convex_hull(corners, 8, hull) != Status::ok) {
+      std::printf("# %s: hull: %s\n", s.name, last_error());
+      return false;
+    }
+    box.shape.type = BodyShape::hull;
+    box.shape.hull = &hull;
+  }
   box.mass = s.mass, box.friction = s.friction, box.restitution = s.restitution;
   box.allow_sleep = false;
   for (std::size_t i = 0; i < s.size(); ++i) {
@@ -293,7 +312,7 @@ void run_scene(const Options& o, const PyramidScene& s) {
   // scene at every level takes minutes. --simd asks for others; the state hash must not
   // change with them.
   std::vector<SimdLevel> levels = o.levels.empty() ? std::vector<SimdLevel>{simd_level()} : levels_to_run(o);
-  for (const GyroModel& model : gyro_models()) {
+  for (const GyroModel& model : gyro_models(s)) {
     bool have_hash = false;
     uint64_t first_hash = 0;  // every level and thread count must give this one
     for (SimdLevel level : levels) {
@@ -328,6 +347,11 @@ void run_scene(const Options& o, const PyramidScene& s) {
 }  // namespace
 
 void run_p1(const Options& o) { run_scene(o, single_pyramid("P1", 20, 50.0f, 600)); }
+void run_p1h(const Options& o) {
+  PyramidScene s = single_pyramid("P1H", 20, 50.0f, 600);
+  s.hull_boxes = true;
+  run_scene(o, s);
+}
 void run_p2(const Options& o) { run_scene(o, single_pyramid("P2", 100, 60.0f, 300)); }
 void run_p3(const Options& o) { run_scene(o, many_pyramids()); }
 

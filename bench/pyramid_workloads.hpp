@@ -20,6 +20,10 @@ struct PyramidScene {
   float gravity = -9.81f;
   float dt = 1.0f / 60.0f;
   int steps = 600;
+  /// Every box a convex hull of its 8 corners (gyro: BodyShape::hull with clipped or
+  /// incremental manifolds; Bullet: btConvexHullShape of the corners pulled in by its default
+  /// 0.04 margin, so its rounded surface is the box, as btBoxShape keeps its margin inside).
+  bool hull_boxes = false;
   std::size_t size() const { return x.size(); }
 };
 

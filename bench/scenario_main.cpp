@@ -17,6 +17,7 @@ void run_lidar(const Options&);
 void run_camera(const Options&);
 void run_b1(const Options&);
 void run_p1(const Options&);
+void run_p1h(const Options&);
 void run_p2(const Options&);
 void run_p3(const Options&);
 void run_c1(const Options&);
@@ -35,6 +36,8 @@ const Workload kWorkloads[] = {
     {"B1", "broadphase on pile-like scenes of 1k, 10k, 100k boxes plus a ground box; error against brute force / grid", run_b1},
     {"P1", "box pyramid, base 20 (210 boxes), 600 steps, sleeping off; gyro soft step and Baumgarte; peer: Bullet",
      run_p1},
+    {"P1H", "P1 with every box a convex hull of its corners; gyro clipping vs incremental manifolds; peer: Bullet "
+     "btConvexHullShape", run_p1h},
     {"P2", "box pyramid, base 100 (5,050 boxes), 300 steps, sleeping off; peer: Bullet", run_p2},
     {"P3", "16 pyramids of base 10 (880 boxes) on one ground, 300 steps, sleeping off; peer: Bullet", run_p3},
     {"C1", "hanging cloth 32^2..256^2, two corners pinned, 600 steps; xpbd and springs; peer: Bullet btSoftBody", run_c1},

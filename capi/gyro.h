@@ -34,7 +34,7 @@ extern "C" {
 
 /** ABI version this header describes: (major << 16) | minor. A library with the same
  *  major and a minor >= the header's is compatible. */
-#define GYRO_ABI_VERSION ((1u << 16) | 3u)
+#define GYRO_ABI_VERSION ((1u << 16) | 4u)
 
 /** The ABI version of the linked library; compare with GYRO_ABI_VERSION. */
 GYRO_API uint32_t gyro_abi_version(void);
@@ -53,7 +53,8 @@ enum {
   GYRO_FEATURE_2D = 1u << 10,           /**< 2D primitives and the quadtree (C++ API) */
   GYRO_FEATURE_SPATIAL = 1u << 11,      /**< meshes, BVH, OBJ reader, camera, frustum culling */
   GYRO_FEATURE_DYNAMICS = 1u << 12,     /**< rigid bodies, contacts, the solver and the world (ABI 1.2) */
-  GYRO_FEATURE_SOFT_BODIES = 1u << 13   /**< springs, cloth, soft bodies and particle joints (ABI 1.3) */
+  GYRO_FEATURE_SOFT_BODIES = 1u << 13,  /**< springs, cloth, soft bodies and particle joints (ABI 1.3) */
+  GYRO_FEATURE_CONVEX = 1u << 14        /**< convex hulls, GJK/EPA queries on pairs, capsule and hull bodies (ABI 1.4) */
 };
 GYRO_API uint32_t gyro_features(void);
 
@@ -489,7 +490,10 @@ enum {
   GYRO_BODY_SHAPE_SPHERE = 0, /**< radius, centred on the body's origin */
   GYRO_BODY_SHAPE_BOX = 1,    /**< half_extents, centred on the body's origin */
   GYRO_BODY_SHAPE_PLANE = 2,  /**< static only: the body frame's y = 0 plane, normal +y */
-  GYRO_BODY_SHAPE_MESH = 3    /**< static only: mesh, in the body's frame */
+  GYRO_BODY_SHAPE_MESH = 3,   /**< static only: mesh, in the body's frame */
+  GYRO_BODY_SHAPE_CAPSULE = 4, /**< ABI 1.4: the segment (0, +-half_height, 0) plus radius, in the body's frame */
+  GYRO_BODY_SHAPE_HULL = 5     /**< ABI 1.4: hull (copied); the body frame is the hull's mass frame
+                                    (see gyro_body_get_shape_frame) */
 };
 
 /** How contacts correct position errors. */
@@ -500,7 +504,15 @@ enum {
   GYRO_CONTACT_LINEAR_PROJECTION = 2 /**< no bias; positions projected apart after the step */
 };
 
-/** The world's settings (gyro::WorldDef). Booleans are 0 or 1. */
+/** How pairs with a capsule or hull build their manifolds (ABI 1.4). */
+typedef uint32_t gyro_convex_manifold;
+enum {
+  GYRO_CONVEX_MANIFOLD_CLIPPING = 0,   /**< GJK/EPA's normal, then face clipping, up to 4 points (default) */
+  GYRO_CONVEX_MANIFOLD_INCREMENTAL = 1 /**< the appendix's arbiter: one GJK/EPA point per step, kept over steps */
+};
+
+/** The world's settings (gyro::WorldDef). Booleans are 0 or 1. gyro_world_create also
+ *  accepts ABI 1.3's struct (struct_size without convex_manifold: it keeps its default). */
 typedef struct gyro_world_def {
   uint32_t struct_size; /**< sizeof(gyro_world_def): set by gyro_world_def_default */
   gyro_contact_model contact_model;
@@ -522,12 +534,13 @@ typedef struct gyro_world_def {
   float sleep_angular_velocity; /**< rad/s */
   uint32_t enable_continuous;   /**< speculative contacts sized by the motion of the step */
   uint32_t threads;             /**< 0: gyro_get_thread_count() */
+  gyro_convex_manifold convex_manifold; /**< ABI 1.4 */
 } gyro_world_def;
 
 /** gyro::WorldDef's defaults (gyro/world.hpp): the soft step with its sub-steps, sleeping on. */
 GYRO_API gyro_world_def gyro_world_def_default(void);
 /** Errors (*out untouched): NULL_ARGUMENT, NON_FINITE, INVALID_ARGUMENT (struct_size,
- *  contact_model, a boolean, iterations or sub-steps outside 1..64, negative slop, ...). */
+ *  contact_model, convex_manifold, a boolean, iterations or sub-steps outside 1..64, negative slop, ...). */
 GYRO_API gyro_status gyro_world_create(const gyro_world_def* def, gyro_world** out);
 /** Destroys the world and its bodies (releasing their mesh references). NULL is fine. */
 GYRO_API void gyro_world_destroy(gyro_world* world);
@@ -539,7 +552,14 @@ GYRO_API gyro_status gyro_world_step(gyro_world* world, float dt);
 GYRO_API gyro_status gyro_world_hash(const gyro_world* world, uint64_t* out);
 GYRO_API gyro_status gyro_world_body_count(const gyro_world* world, int32_t* out);
 
-/** A body's definition (gyro::BodyDef). Booleans are 0 or 1. */
+/** A convex polyhedron built by gyro_convex_hull_create (the convex section below). */
+typedef struct gyro_convex_hull gyro_convex_hull;
+
+/** A body's definition (gyro::BodyDef). Booleans are 0 or 1.
+ *  ABI 1.4 appended half_height, reserved2 and hull. gyro_body_create also accepts the ABI
+ *  1.3 struct_size (the struct up to and without half_height, padded as the compiler pads
+ *  it: 144 bytes with 64-bit pointers): it then reads nothing past mesh, and such a
+ *  definition cannot describe a capsule or a hull. */
 typedef struct gyro_body_def {
   uint32_t struct_size; /**< sizeof(gyro_body_def): set by gyro_body_def_default */
   gyro_body_type type;
@@ -566,16 +586,23 @@ typedef struct gyro_body_def {
   /** GYRO_BODY_SHAPE_MESH: the world keeps its own reference until the body is destroyed,
    *  so the caller may gyro_mesh_destroy its handle at once. NULL for other shapes. */
   const gyro_mesh* mesh;
+  float half_height;  /**< capsule (ABI 1.4): half the length of its core segment, >= 0 */
+  uint32_t reserved2; /**< 0 */
+  /** GYRO_BODY_SHAPE_HULL (ABI 1.4): the world copies the hull, so the caller may
+   *  gyro_convex_hull_destroy its handle at once. NULL for other shapes. */
+  const gyro_convex_hull* hull;
 } gyro_body_def;
 
 /** A dynamic unit box (half extents 0.5, density 1: 1 kg) at the origin, at rest, awake,
- *  friction 0.6, restitution 0, colliding with everything. */
+ *  friction 0.6, restitution 0, colliding with everything; half_height 0.5, hull NULL. */
 GYRO_API gyro_body_def gyro_body_def_default(void);
 /** Errors (*out untouched, the world unchanged): NULL_ARGUMENT (def, out, or the mesh of a
- *  mesh body), NON_FINITE, INVALID_ARGUMENT (struct_size, an unknown type or shape, a
- *  boolean, reserved, a negative mass, a dynamic body with neither mass nor density > 0, a
- *  zero-size shape, a zero quaternion, a plane or mesh on a non-static body, a mesh given
- *  for another shape). */
+ *  mesh body, or the hull of a hull body), NON_FINITE, INVALID_ARGUMENT (struct_size: neither this header's nor ABI
+ *  1.3's, an unknown type or shape, a boolean, reserved or reserved2, a negative mass, a
+ *  dynamic body with neither mass nor density > 0, a zero-size shape, a negative
+ *  half_height, a zero quaternion, a plane or mesh on a non-static body, a mesh given for
+ *  another shape, a hull given for another shape, a capsule
+ *  or hull in an ABI 1.3 struct). */
 GYRO_API gyro_status gyro_body_create(gyro_world* world, const gyro_body_def* def, gyro_body_id* out);
 /** The id becomes stale. */
 GYRO_API gyro_status gyro_body_destroy(gyro_world* world, gyro_body_id id);
@@ -585,6 +612,14 @@ GYRO_API uint32_t gyro_body_is_valid(const gyro_world* world, gyro_body_id id);
 /** Either out pointer may be NULL (not both). */
 GYRO_API gyro_status gyro_body_get_transform(const gyro_world* world, gyro_body_id id, gyro_vec3* position,
                                              gyro_quat* orientation);
+/** Where the shape's own frame sits in the body frame (ABI 1.4). A hull body's frame is the
+ *  hull's mass frame (origin at the centroid, axes along the principal axes), so the hull as
+ *  built by gyro_convex_hull_create is at position + rotate(orientation, *offset) with the
+ *  rotation orientation * *rotation (position and orientation from gyro_body_get_transform).
+ *  Identity (offset 0, rotation (0, 0, 0, 1)) for every other shape. Either out pointer may
+ *  be NULL (not both). Errors: NULL_ARGUMENT, STALE_ID. */
+GYRO_API gyro_status gyro_body_get_shape_frame(const gyro_world* world, gyro_body_id id, gyro_vec3* offset,
+                                               gyro_quat* rotation);
 /** Teleports the body (and wakes it); contacts are recomputed next step. */
 GYRO_API gyro_status gyro_body_set_transform(gyro_world* world, gyro_body_id id, gyro_vec3 position,
                                              gyro_quat orientation);
@@ -899,6 +934,176 @@ GYRO_API gyro_status gyro_soft_body_get_stats(const gyro_world* world, gyro_soft
                                               gyro_soft_body_stats* out);
 /** The 64-bit witness of one soft body (settings, families, particles, springs). */
 GYRO_API gyro_status gyro_soft_body_hash(const gyro_world* world, gyro_soft_body_id id, uint64_t* out);
+
+/* ------------------------------------------------------------------ convex shapes (ABI 1.4) */
+
+/** Convex hulls and GJK/EPA queries on arrays of pairs (conventions of gyro/convex.hpp).
+ *  Present when gyro_features() has GYRO_FEATURE_CONVEX.
+ *  - A shape is described in its local frame; a pose places it with the OBB convention of
+ *    gyro_obb_soa: world = local * rotation + position, the rows of rotation being the
+ *    shape's local x, y, z axes in the world (a proper rotation: unit, orthogonal rows).
+ *  - Capsules and cylinders run along their local y axis, from -half_height to +half_height.
+ *  - The normal of a result points from A towards B: moving B by depth * normal separates an
+ *    intersecting pair; a separated pair closes its gap by moving B by -distance * normal.
+ *  - Results are bit-identical at every SIMD level and thread count.
+ *  - gyro_convex_hull (typedef'd before gyro_body_def) is a convex polyhedron built by
+ *    quickhull: welded vertices, planar faces (coplanar triangles merged, collinear boundary
+ *    vertices removed) and unique edges. Immutable: it may be read and queried from many
+ *    threads at once. */
+
+/** Builds the convex hull of count points (copied; duplicates and near-duplicates welded,
+ *  points within about 1e-6 of the cloud's extent of a face count as on it). Errors (*out
+ *  untouched): NULL_ARGUMENT (out, or points with count > 0), INVALID_COUNT (count < 4,
+ *  negative included), NON_FINITE (a NaN or infinite coordinate), INVALID_ARGUMENT (the
+ *  points coincide, are collinear or coplanar: no volume), INTERNAL (a consistency check
+ *  failed), OUT_OF_MEMORY. */
+GYRO_API gyro_status gyro_convex_hull_create(const gyro_vec3* points, int32_t count, gyro_convex_hull** out);
+/** Releases the hull; bodies built from it keep their own copy. NULL is fine. */
+GYRO_API void gyro_convex_hull_destroy(gyro_convex_hull* hull);
+
+typedef struct gyro_convex_hull_info {
+  int32_t vertex_count;
+  int32_t face_count;
+  int32_t edge_count;
+  int32_t face_vertex_count; /**< entries of gyro_convex_hull_get_face_vertices: the sum of the faces' sizes */
+} gyro_convex_hull_info;
+
+/** Errors: NULL_ARGUMENT. */
+GYRO_API gyro_status gyro_convex_hull_get_info(const gyro_convex_hull* hull, gyro_convex_hull_info* out);
+
+/** The copy-out getters below share one pattern: *count gets how many elements there are,
+ *  and the first min(capacity, *count) are written to out (out may be NULL when capacity is
+ *  0: a call that asks for the size). Errors (nothing written): NULL_ARGUMENT (hull, count,
+ *  or out with capacity > 0), INVALID_COUNT (capacity < 0). */
+
+/** The hull's vertices, in the order of their first index among the input points. */
+GYRO_API gyro_status gyro_convex_hull_get_vertices(const gyro_convex_hull* hull, gyro_vec3* out, int32_t capacity,
+                                                   int32_t* count);
+
+/** A plane dot(normal, p) = d. */
+typedef struct gyro_convex_plane {
+  gyro_vec3 normal; /**< unit, pointing out of the hull */
+  float d;
+} gyro_convex_plane;
+
+/** One plane per face, in face order. */
+GYRO_API gyro_status gyro_convex_hull_get_planes(const gyro_convex_hull* hull, gyro_convex_plane* out,
+                                                 int32_t capacity, int32_t* count);
+/** face_count + 1 offsets: face f has the vertex indices face_vertices[start[f] .. start[f + 1]). */
+GYRO_API gyro_status gyro_convex_hull_get_face_starts(const gyro_convex_hull* hull, uint32_t* out, int32_t capacity,
+                                                      int32_t* count);
+/** Every face's vertex indices (into the vertices), counter-clockwise seen from outside. */
+GYRO_API gyro_status gyro_convex_hull_get_face_vertices(const gyro_convex_hull* hull, uint32_t* out, int32_t capacity,
+                                                        int32_t* count);
+
+/** An edge between two vertex indices, a < b. */
+typedef struct gyro_convex_edge {
+  uint32_t a, b;
+} gyro_convex_edge;
+
+/** The unique edges, sorted by (a, b). */
+GYRO_API gyro_status gyro_convex_hull_get_edges(const gyro_convex_hull* hull, gyro_convex_edge* out,
+                                                int32_t capacity, int32_t* count);
+
+/** Mass properties of the solid hull at density 1 (multiply volume and inertia by a
+ *  density), in the hull's own frame. */
+typedef struct gyro_convex_mass {
+  float volume;
+  gyro_vec3 centroid;    /**< the centre of mass */
+  gyro_vec3 inertia[3];  /**< rows of the inertia tensor about the centroid, density 1 */
+  gyro_vec3 principal_moments; /**< eigenvalues of the inertia, ascending */
+  /** Rows: the matching unit eigenvectors, a right-handed rotation (inertia =
+   *  axes^T diag(moments) axes). */
+  gyro_vec3 principal_axes[3];
+} gyro_convex_mass;
+
+/** Volume, centroid, inertia and principal frame (divergence theorem in binary64, Jacobi
+ *  rotations; deterministic). Errors (*out untouched): NULL_ARGUMENT, INVALID_ARGUMENT (a
+ *  hull with no volume). */
+GYRO_API gyro_status gyro_convex_hull_mass(const gyro_convex_hull* hull, gyro_convex_mass* out);
+
+typedef uint32_t gyro_convex_type;
+enum {
+  GYRO_CONVEX_SPHERE = 0,   /**< radius around the origin */
+  GYRO_CONVEX_BOX = 1,      /**< half_extents around the origin */
+  GYRO_CONVEX_CAPSULE = 2,  /**< the segment (0, +-half_height, 0) plus radius */
+  GYRO_CONVEX_CYLINDER = 3, /**< the axis (0, +-half_height, 0), radius */
+  GYRO_CONVEX_TRIANGLE = 4, /**< corners triangle[0..2] (flat: it has no inside) */
+  GYRO_CONVEX_HULL = 5      /**< hull, in the frame its points were given in */
+};
+
+/** A convex shape in its local frame: set type and the type's members; the others are
+ *  ignored, except hull, which must be NULL for the other types. Sizes are >= 0. */
+typedef struct gyro_convex_shape {
+  gyro_convex_type type;
+  float radius;           /**< sphere, capsule, cylinder */
+  float half_height;      /**< capsule, cylinder */
+  gyro_vec3 half_extents; /**< box */
+  gyro_vec3 triangle[3];  /**< triangle */
+  uint32_t reserved;      /**< 0 */
+  /** hull: not copied; it must stay alive during the call. */
+  const gyro_convex_hull* hull;
+} gyro_convex_shape;
+
+/** Where a shape is: world = local * rotation + position (rows: the local axes in the world). */
+typedef struct gyro_convex_pose {
+  gyro_vec3 position;
+  gyro_vec3 rotation[3];
+} gyro_convex_pose;
+
+/** The pose of a body transform (a quaternion rotating local vectors into the world, as
+ *  gyro_body_get_transform gives it; normalised here). Errors (*out untouched):
+ *  NULL_ARGUMENT, NON_FINITE, INVALID_ARGUMENT (a zero quaternion). */
+GYRO_API gyro_status gyro_convex_pose_from_quat(gyro_vec3 position, gyro_quat orientation, gyro_convex_pose* out);
+
+/** How a query ended (gyro::ConvexStatus). GYRO_CONVEX_ITERATION_LIMIT is never a verdict of
+ *  separation: the fields hold the best estimate, and the caller decides. */
+typedef uint32_t gyro_convex_status;
+enum {
+  GYRO_CONVEX_SEPARATED = 0,       /**< the gap is larger than the touching tolerance */
+  GYRO_CONVEX_TOUCHING = 1,        /**< |signed distance| <= about 1e-6 of the pair's size (overlapping) */
+  GYRO_CONVEX_INTERSECTING = 2,    /**< overlapping by more than the tolerance */
+  GYRO_CONVEX_ITERATION_LIMIT = 3, /**< no convergence in 64 GJK (and 64 EPA) iterations */
+  /** This pair could not be answered: a NaN or infinite value, a negative size, an unknown
+   *  type, a non-zero reserved, a NULL hull for GYRO_CONVEX_HULL or a hull for another
+   *  type, or a pose rotation whose rows are not orthonormal and right-handed (to 1e-3).
+   *  Every other field is 0. */
+  GYRO_CONVEX_INVALID_INPUT = 4
+};
+
+/** One pair's answer, in world coordinates. */
+typedef struct gyro_convex_result {
+  gyro_convex_status status;
+  /** Signed distance: > 0 the gap, <= 0 minus the penetration depth. The intersect and
+   *  distance calls give 0 for intersecting pairs; the penetration call gives -depth. */
+  float distance;
+  gyro_vec3 normal;  /**< unit, from A towards B; 0 where undefined (coincident cores) */
+  gyro_vec3 point_a; /**< witness on A: the closest point, or A's deepest point inside B */
+  gyro_vec3 point_b; /**< witness on B: point_b - point_a = distance * normal */
+  uint32_t iterations; /**< GJK plus EPA iterations */
+} gyro_convex_result;
+
+/** out[i] = the query on the pair (a[i] at pa[i], b[i] at pb[i]) for i < count. A pair that
+ *  cannot be answered gets GYRO_CONVEX_INVALID_INPUT (and gyro_last_error() names the first
+ *  such pair) without failing the call: the other pairs are answered. The pairs run on
+ *  gyro_get_thread_count() threads in fixed chunks: the same bits for any thread count.
+ *  Errors (nothing written): NULL_ARGUMENT (an array NULL with count > 0; all may be NULL
+ *  when count is 0), INVALID_COUNT (count < 0).
+ *  gyro_convex_intersect_pairs: the boolean verdict by GJK, which stops at the first
+ *  separating axis or enclosing simplex (distance, normal and witnesses are those at the
+ *  exit, exact only when it converged). */
+GYRO_API gyro_status gyro_convex_intersect_pairs(const gyro_convex_shape* a, const gyro_convex_pose* pa,
+                                                 const gyro_convex_shape* b, const gyro_convex_pose* pb,
+                                                 int32_t count, gyro_convex_result* out);
+/** Distance and closest points by GJK; intersecting pairs report distance 0 (no EPA). */
+GYRO_API gyro_status gyro_convex_distance_pairs(const gyro_convex_shape* a, const gyro_convex_pose* pa,
+                                                const gyro_convex_shape* b, const gyro_convex_pose* pb,
+                                                int32_t count, gyro_convex_result* out);
+/** The distance of separated pairs; the penetration depth (distance = -depth), normal and
+ *  contact points by EPA for overlapping ones. */
+GYRO_API gyro_status gyro_convex_penetration_pairs(const gyro_convex_shape* a, const gyro_convex_pose* pa,
+                                                   const gyro_convex_shape* b, const gyro_convex_pose* pb,
+                                                   int32_t count, gyro_convex_result* out);
 
 #ifdef __cplusplus
 }

@@ -68,6 +68,11 @@ GYRO_API uint32_t gyro_features(void) {
 #if defined(GYRO_HAS_DYNAMICS)
   f |= GYRO_FEATURE_DYNAMICS | GYRO_FEATURE_SOFT_BODIES;
 #endif
+#if defined(GYRO_HAS_GEOMETRY) && defined(GYRO_HAS_DYNAMICS)
+  // The convex calls (capi/gyro_capi_convex.cpp) are built with the dynamics module, which
+  // brings geometry; hull and capsule bodies need the world as well.
+  f |= GYRO_FEATURE_CONVEX;
+#endif
   return f;
 }
 

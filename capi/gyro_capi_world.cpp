@@ -1,5 +1,6 @@
-// The C ABI of the dynamics world: world and body definitions, body state, forces and
-// impulses, zero-copy views, timings, stats and contact events, over gyro/world.hpp.
+// The C ABI of the dynamics world: world and body definitions (ABI 1.3 and 1.4 layouts),
+// body state and shape frames, forces and impulses, zero-copy views, timings, stats and
+// contact events, over gyro/world.hpp.
 //
 // Every entry point checks what it can before touching the world (NULL, struct_size, enum
 // values, booleans, reserved fields, NaN/Inf, stale ids, dt), so a bad call changes nothing
@@ -8,6 +9,7 @@
 #define GYRO_BUILDING 1
 #include "gyro.h"
 
+#include "capi_convex.hpp"
 #include "capi_handles.hpp"
 #include "capi_support.hpp"
 #include "capi_world.hpp"
@@ -37,17 +39,29 @@ using gyro::detail::is_finite;
 static_assert(sizeof(gyro_body_id) == sizeof(gyro::BodyId) && alignof(gyro_body_id) == alignof(gyro::BodyId));
 static_assert(sizeof(gyro_contact_event) == sizeof(gyro::ContactEvent) &&
               offsetof(gyro::ContactEvent, b) == offsetof(gyro_contact_event, b));
-static_assert(sizeof(gyro_vec3) == 12 && sizeof(gyro_quat) == 16 && sizeof(gyro_world_def) == 88 &&
+static_assert(sizeof(gyro_vec3) == 12 && sizeof(gyro_quat) == 16 && sizeof(gyro_world_def) == 92 &&
               sizeof(gyro_step_timings) == 56 && sizeof(gyro_step_stats) == 32 && sizeof(gyro_contact_event) == 16);
-static_assert(sizeof(void*) != 8 || (sizeof(gyro_body_def) == 144 && sizeof(gyro_body_view) == 120 &&
+static_assert(sizeof(void*) != 8 || (sizeof(gyro_body_def) == 160 && sizeof(gyro_body_view) == 120 &&
                                      sizeof(gyro_contact_events) == 24));
+// ABI 1.3's gyro_body_def ended with mesh: its size is the offset of half_height rounded up to
+// the struct's alignment (the fields appended in 1.4 need no more alignment than uint64_t
+// and pointers, so the alignment is unchanged).
+constexpr std::size_t kBodyDefSize13 = (offsetof(gyro_body_def, half_height) + alignof(gyro_body_def) - 1) /
+                                       alignof(gyro_body_def) * alignof(gyro_body_def);
+static_assert(sizeof(void*) != 8 || (offsetof(gyro_body_def, half_height) == 144 && kBodyDefSize13 == 144 &&
+                                     offsetof(gyro_body_def, hull) == 152));
+static_assert(kBodyDefSize13 < sizeof(gyro_body_def));
 static_assert(uint32_t(gyro::BodyType::dynamic) == GYRO_BODY_DYNAMIC &&
               uint32_t(gyro::BodyType::kinematic) == GYRO_BODY_KINEMATIC &&
               uint32_t(gyro::BodyType::static_body) == GYRO_BODY_STATIC);
 static_assert(uint32_t(gyro::BodyShape::sphere) == GYRO_BODY_SHAPE_SPHERE &&
               uint32_t(gyro::BodyShape::box) == GYRO_BODY_SHAPE_BOX &&
               uint32_t(gyro::BodyShape::plane) == GYRO_BODY_SHAPE_PLANE &&
-              uint32_t(gyro::BodyShape::mesh) == GYRO_BODY_SHAPE_MESH);
+              uint32_t(gyro::BodyShape::mesh) == GYRO_BODY_SHAPE_MESH &&
+              uint32_t(gyro::BodyShape::capsule) == GYRO_BODY_SHAPE_CAPSULE &&
+              uint32_t(gyro::BodyShape::hull) == GYRO_BODY_SHAPE_HULL);
+static_assert(uint32_t(gyro::ConvexManifold::clipping) == GYRO_CONVEX_MANIFOLD_CLIPPING &&
+              uint32_t(gyro::ConvexManifold::incremental) == GYRO_CONVEX_MANIFOLD_INCREMENTAL);
 static_assert(uint32_t(gyro::ContactModel::soft_step) == GYRO_CONTACT_SOFT_STEP &&
               uint32_t(gyro::ContactModel::baumgarte) == GYRO_CONTACT_BAUMGARTE &&
               uint32_t(gyro::ContactModel::linear_projection) == GYRO_CONTACT_LINEAR_PROJECTION);
@@ -73,9 +87,21 @@ Status require_body(const gyro_world* w, gyro_body_id id) {
   return Status::ok;
 }
 
-Status world_def_of(const gyro_world_def& d, gyro::WorldDef& out) {
-  if (d.struct_size != sizeof(gyro_world_def))
-    return fail(Status::invalid_argument, "def->struct_size = %u: start from gyro_world_def_default()", d.struct_size);
+// ABI 1.3's gyro_world_def ended before convex_manifold.
+constexpr std::size_t kWorldDefSize13 = offsetof(gyro_world_def, convex_manifold);
+
+Status world_def_of(const gyro_world_def& given, gyro::WorldDef& out) {
+  gyro_world_def d;
+  if (given.struct_size == sizeof(gyro_world_def)) {
+    d = given;
+  } else if (given.struct_size == kWorldDefSize13) {
+    d = gyro_world_def_default();  // the fields 1.3 lacks keep their defaults
+    std::memcpy(&d, &given, kWorldDefSize13);
+  } else {
+    return fail(Status::invalid_argument, "def->struct_size = %u: start from gyro_world_def_default()", given.struct_size);
+  }
+  if (d.convex_manifold > GYRO_CONVEX_MANIFOLD_INCREMENTAL)
+    return fail(Status::invalid_argument, "def->convex_manifold = %u is unknown", d.convex_manifold);
   if (d.contact_model > GYRO_CONTACT_LINEAR_PROJECTION)
     return fail(Status::invalid_argument, "def->contact_model = %u is unknown", d.contact_model);
   GYRO_TRY(check_bool(d.enable_warm_starting, "def->enable_warm_starting"));
@@ -101,17 +127,65 @@ Status world_def_of(const gyro_world_def& d, gyro::WorldDef& out) {
   w.sleep_time = d.sleep_time, w.sleep_linear_velocity = d.sleep_linear_velocity;
   w.sleep_angular_velocity = d.sleep_angular_velocity;
   w.enable_continuous = d.enable_continuous != 0, w.threads = d.threads;
+  w.convex_manifold = static_cast<gyro::ConvexManifold>(d.convex_manifold);
   out = w;
   return Status::ok;
 }
 
-// The C++ BodyDef, with the mesh reference to keep (null for other shapes).
+gyro_body_def default_body_def() {
+  const gyro::BodyDef b;
+  gyro_body_def d;
+  std::memset(&d, 0, sizeof d);
+  d.struct_size = sizeof(gyro_body_def);
+  d.type = static_cast<gyro_body_type>(b.type);
+  d.shape = static_cast<gyro_body_shape>(b.shape.type);
+  d.radius = b.shape.radius;
+  d.half_extents = c_v3(b.shape.half_extents);
+  d.position = c_v3(b.position);
+  d.orientation = c_q4(b.orientation);
+  d.linear_velocity = c_v3(b.linear_velocity);
+  d.angular_velocity = c_v3(b.angular_velocity);
+  d.density = b.density, d.mass = b.mass, d.friction = b.friction, d.restitution = b.restitution;
+  d.linear_damping = b.linear_damping, d.angular_damping = b.angular_damping, d.gravity_scale = b.gravity_scale;
+  d.category = b.category, d.mask = b.mask;
+  d.allow_sleep = b.allow_sleep, d.awake = b.awake;
+  d.user_data = b.user_data;
+  d.mesh = nullptr;
+  d.half_height = b.shape.half_height;
+  d.hull = nullptr;
+  return d;
+}
+
+// The caller's definition as this header's struct: an ABI 1.3 one (struct_size
+// kBodyDefSize13) is read only up to its end, the fields it lacks keep their defaults.
+Status read_body_def(const gyro_body_def* def, gyro_body_def& out) {
+  uint32_t size = 0;
+  std::memcpy(&size, def, sizeof size);
+  if (size == sizeof(gyro_body_def)) {
+    out = *def;
+    return Status::ok;
+  }
+  if (size != kBodyDefSize13)
+    return fail(Status::invalid_argument, "def->struct_size = %u: start from gyro_body_def_default()", size);
+  gyro_body_def d = default_body_def();
+  std::memcpy(&d, def, offsetof(gyro_body_def, half_height));
+  out = d;
+  return Status::ok;
+}
+
+// The C++ BodyDef, with the mesh reference to keep (null for other shapes). d comes from
+// read_body_def (struct_size is this header's or ABI 1.3's).
 Status body_def_of(const gyro_body_def& d, gyro::BodyDef& out, std::shared_ptr<const gyro::TriangleMesh>& mesh) {
-  if (d.struct_size != sizeof(gyro_body_def))
-    return fail(Status::invalid_argument, "def->struct_size = %u: start from gyro_body_def_default()", d.struct_size);
+  const bool abi13 = d.struct_size != sizeof(gyro_body_def);
   if (d.type > GYRO_BODY_DYNAMIC) return fail(Status::invalid_argument, "def->type = %u is unknown", d.type);
-  if (d.shape > GYRO_BODY_SHAPE_MESH) return fail(Status::invalid_argument, "def->shape = %u is unknown", d.shape);
+  if (d.shape > GYRO_BODY_SHAPE_HULL) return fail(Status::invalid_argument, "def->shape = %u is unknown", d.shape);
+  if (abi13 && d.shape > GYRO_BODY_SHAPE_MESH)
+    return fail(Status::invalid_argument,
+                "def->shape = %u needs the ABI 1.4 gyro_body_def (struct_size %zu, not %u): start from "
+                "gyro_body_def_default()",
+                d.shape, sizeof(gyro_body_def), d.struct_size);
   if (d.reserved != 0) return fail(Status::invalid_argument, "def->reserved must be 0");
+  if (d.reserved2 != 0) return fail(Status::invalid_argument, "def->reserved2 must be 0");
   GYRO_TRY(check_bool(d.allow_sleep, "def->allow_sleep"));
   GYRO_TRY(check_bool(d.awake, "def->awake"));
   if (d.shape == GYRO_BODY_SHAPE_MESH) {
@@ -119,6 +193,12 @@ Status body_def_of(const gyro_body_def& d, gyro::BodyDef& out, std::shared_ptr<c
   } else if (d.mesh) {
     return fail(Status::invalid_argument, "def->mesh is set but def->shape = %u is not GYRO_BODY_SHAPE_MESH", d.shape);
   }
+  if (d.shape == GYRO_BODY_SHAPE_HULL) {
+    GYRO_TRY(require(d.hull, "def->hull"));
+  } else if (d.hull) {
+    return fail(Status::invalid_argument, "def->hull is set but def->shape = %u is not GYRO_BODY_SHAPE_HULL", d.shape);
+  }
+  GYRO_TRY(check_finite(d.half_height, "def->half_height"));
   GYRO_TRY(check_finite(d.half_extents, "def->half_extents"));
   GYRO_TRY(check_finite(d.position, "def->position"));
   GYRO_TRY(check_finite(d.orientation, "def->orientation"));
@@ -136,6 +216,8 @@ Status body_def_of(const gyro_body_def& d, gyro::BodyDef& out, std::shared_ptr<c
   b.shape.radius = d.radius;
   b.shape.half_extents = v3(d.half_extents);
   b.shape.mesh = d.mesh ? d.mesh->mesh.get() : nullptr;
+  b.shape.half_height = d.half_height;
+  b.shape.hull = d.hull ? &d.hull->hull : nullptr;  // copied by the world
   b.position = v3(d.position);
   b.orientation = q4(d.orientation);
   b.linear_velocity = v3(d.linear_velocity);
@@ -175,6 +257,7 @@ GYRO_API gyro_world_def gyro_world_def_default(void) {
   d.sleep_time = w.sleep_time, d.sleep_linear_velocity = w.sleep_linear_velocity;
   d.sleep_angular_velocity = w.sleep_angular_velocity;
   d.enable_continuous = w.enable_continuous, d.threads = w.threads;
+  d.convex_manifold = static_cast<gyro_convex_manifold>(w.convex_manifold);
   return d;
 }
 
@@ -227,36 +310,18 @@ GYRO_API gyro_status gyro_world_body_count(const gyro_world* world, int32_t* out
   });
 }
 
-GYRO_API gyro_body_def gyro_body_def_default(void) {
-  const gyro::BodyDef b;
-  gyro_body_def d;
-  std::memset(&d, 0, sizeof d);
-  d.struct_size = sizeof(gyro_body_def);
-  d.type = static_cast<gyro_body_type>(b.type);
-  d.shape = static_cast<gyro_body_shape>(b.shape.type);
-  d.radius = b.shape.radius;
-  d.half_extents = c_v3(b.shape.half_extents);
-  d.position = c_v3(b.position);
-  d.orientation = c_q4(b.orientation);
-  d.linear_velocity = c_v3(b.linear_velocity);
-  d.angular_velocity = c_v3(b.angular_velocity);
-  d.density = b.density, d.mass = b.mass, d.friction = b.friction, d.restitution = b.restitution;
-  d.linear_damping = b.linear_damping, d.angular_damping = b.angular_damping, d.gravity_scale = b.gravity_scale;
-  d.category = b.category, d.mask = b.mask;
-  d.allow_sleep = b.allow_sleep, d.awake = b.awake;
-  d.user_data = b.user_data;
-  d.mesh = nullptr;
-  return d;
-}
+GYRO_API gyro_body_def gyro_body_def_default(void) { return default_body_def(); }
 
 GYRO_API gyro_status gyro_body_create(gyro_world* world, const gyro_body_def* def, gyro_body_id* out) {
   return guarded([&]() -> Status {
     GYRO_TRY(require_world(world));
     GYRO_TRY(require(def, "def"));
     GYRO_TRY(require(out, "out"));
+    gyro_body_def d = default_body_def();
+    GYRO_TRY(read_body_def(def, d));
     gyro::BodyDef b;
     std::shared_ptr<const gyro::TriangleMesh> mesh;
-    GYRO_TRY(body_def_of(*def, b, mesh));
+    GYRO_TRY(body_def_of(d, b, mesh));
     // The mesh reference's map node is allocated before the body exists, so nothing can
     // fail once it does (re-keying and inserting a node allocate nothing).
     decltype(world->meshes) staged;
@@ -297,6 +362,20 @@ GYRO_API gyro_status gyro_body_get_transform(const gyro_world* world, gyro_body_
     GYRO_TRY(world->world->get_transform(id_of(id), &p, &q));
     if (position) *position = c_v3(p);
     if (orientation) *orientation = c_q4(q);
+    return Status::ok;
+  });
+}
+
+GYRO_API gyro_status gyro_body_get_shape_frame(const gyro_world* world, gyro_body_id id, gyro_vec3* offset,
+                                               gyro_quat* rotation) {
+  return guarded([&]() -> Status {
+    GYRO_TRY(require_body(world, id));
+    if (!offset && !rotation) return fail(Status::null_argument, "offset and rotation are both null");
+    gyro::vec3 o;
+    gyro::quat q;
+    GYRO_TRY(world->world->get_shape_frame(id_of(id), &o, &q));
+    if (offset) *offset = c_v3(o);
+    if (rotation) *rotation = c_q4(q);
     return Status::ok;
   });
 }

@@ -162,4 +162,23 @@ struct ConvexHull {
 /// make_convex_points, just not polyhedra), internal (a consistency check failed).
 Status build_convex_hull(const vec3* points, std::size_t count, ConvexHull& out);
 
+/// Mass properties of a solid ConvexHull of density 1, in the hull's own frame.
+struct ConvexMass {
+  float volume = 0.0f;
+  vec3 centroid;  ///< centre of mass
+  /// Inertia tensor about the centroid (axes of the hull's frame), for density 1.
+  mat3 inertia;
+  /// The principal frame: principal_moments are the eigenvalues of `inertia`, ascending,
+  /// and the rows of principal_axes the matching unit eigenvectors, a right-handed
+  /// rotation (det +1), so inertia = principal_axes^T diag(moments) principal_axes.
+  vec3 principal_moments;
+  mat3 principal_axes;
+};
+
+/// Volume, centroid and inertia by the divergence theorem over the faces' triangles in
+/// binary64 (Mirtich 1996 / Eberly's polyhedral mass properties), principal axes by cyclic
+/// Jacobi rotations (a fixed order, + - * / sqrt only: deterministic). Failures leave
+/// `out` unchanged: invalid_argument (an empty hull or one with volume <= 0).
+Status convex_hull_mass(const ConvexHull& hull, ConvexMass& out);
+
 }  // namespace gyro

@@ -7,10 +7,14 @@
 //    rotating body-local vectors into the world (gyro/math_quat.hpp's rotate()).
 //  - Bodies are named by BodyIds {index, generation}; all-zero is null. A destroyed body's
 //    id is stale: every call with it returns Status::stale_id and changes nothing.
-//  - Shapes: a sphere (radius) or a box (half extents) centred on the body's origin; a
+//  - Shapes: a sphere (radius), a box (half extents) or a capsule (radius around the segment
+//    (0, +-half_height, 0)) centred on the body's origin; a convex hull (gyro/convex.hpp,
+//    copied into its mass frame: the body's origin is its centroid, see get_shape_frame); a
 //    static plane (the body frame's y = 0 plane, normal +y, i.e. normal = rotate(q, +y)
 //    through the body's position); a static triangle mesh (a TriangleMesh the caller keeps
-//    alive while the body exists, in the body's frame).
+//    alive while the body exists, in the body's frame). Pairs with a capsule or a hull go
+//    through GJK/EPA and face clipping (WorldDef::convex_manifold); the others through
+//    dedicated separating-axis and closest-point routines.
 //  - Static bodies never move. Kinematic bodies move by their velocity and push dynamic
 //    bodies, which never push back. Dynamic bodies get their mass and inertia from shape and
 //    density (or from BodyDef::mass when it is > 0).
@@ -46,6 +50,7 @@ namespace gyro {
 class TriangleMesh;
 class ParticleSystem;
 class SoftBody;
+struct ConvexHull;
 
 /// A stable body name; all-zero is null. Ordered by index, then generation.
 struct BodyId {
@@ -79,6 +84,8 @@ enum class BodyShape : uint32_t {
   box = 1,     ///< ShapeDef::half_extents
   plane = 2,   ///< static only: the body frame's y = 0 plane, normal +y
   mesh = 3,    ///< static only: ShapeDef::mesh in the body frame
+  capsule = 4, ///< ShapeDef::radius and half_height: the segment (0, +-half_height, 0) plus radius
+  hull = 5,    ///< ShapeDef::hull (copied): the body frame is the hull's mass frame, see get_shape_frame
 };
 
 struct ShapeDef {
@@ -86,6 +93,12 @@ struct ShapeDef {
   float radius = 0.5f;
   vec3 half_extents{0.5f, 0.5f, 0.5f};
   const TriangleMesh* mesh = nullptr;  ///< not owned; must outlive the body
+  float half_height = 0.5f;            ///< capsule: half the length of its core segment (>= 0)
+  /// hull: the world keeps its own copy, moved into the hull's mass frame (centroid at the
+  /// body origin, principal axes along the body axes), so the caller may free it at once.
+  /// BodyDef::position and orientation place the hull as built; get_transform then reports
+  /// the mass frame (see World::get_shape_frame).
+  const ConvexHull* hull = nullptr;
 };
 
 struct BodyDef {
@@ -116,6 +129,12 @@ enum class ContactModel : uint32_t {
   linear_projection = 2,  ///< the book's chapter 15: no bias, positions projected apart after the step
 };
 
+/// How pairs with a capsule or hull build their manifolds. Values are part of the C ABI.
+enum class ConvexManifold : uint32_t {
+  clipping = 0,     ///< one shot: GJK/EPA's normal, then face clipping (up to 4 points); default
+  incremental = 1,  ///< the appendix's arbiter: one GJK/EPA point per step, kept over steps
+};
+
 struct WorldDef {
   vec3 gravity{0.0f, -9.81f, 0.0f};
   ContactModel contact_model = ContactModel::soft_step;
@@ -135,6 +154,7 @@ struct WorldDef {
   float sleep_linear_velocity = 0.05f;  ///< m/s
   float sleep_angular_velocity = 0.05f; ///< rad/s
   bool enable_continuous = true;  ///< speculative contacts sized by the motion of the step
+  ConvexManifold convex_manifold = ConvexManifold::clipping;
   uint32_t threads = 0;           ///< 0: gyro::thread_count()
 };
 
@@ -191,6 +211,11 @@ class World {
   Status get_mass(BodyId id, float* mass) const;
   Status get_type(BodyId id, BodyType* type) const;
   Status get_user_data(BodyId id, uint64_t* user_data) const;
+  /// Where the shape's own frame sits in the body frame: a hull body's frame is the hull's
+  /// mass frame (its origin the centroid, its axes the principal axes), so the hull as the
+  /// caller built it is at body_transform * (offset, rotation). Identity for other shapes.
+  /// Render a hull body with position + rotate(q, offset) and q * rotation.
+  Status get_shape_frame(BodyId id, vec3* offset, quat* rotation) const;
 
   /// Forces and torques last for the next step only (cleared after it).
   Status apply_force(BodyId id, const vec3& force, const vec3& world_point);

@@ -47,6 +47,9 @@ class IdPool {
     return {index, e.generation};
   }
 
+  /// The index the next create() will hand out.
+  uint32_t next_index() const { return free_.empty() ? static_cast<uint32_t>(entries_.size()) : free_.back(); }
+
   bool valid(Id id) const {
     return id.index < entries_.size() && entries_[id.index].generation == id.generation &&
            entries_[id.index].slot != kNoSlot;

@@ -10,6 +10,7 @@
 #include "core/columns.hpp"
 #include "core/id_pool.hpp"
 #include "core/state_hash.hpp"
+#include "dynamics/body_hull.hpp"
 #include "gyro/shapes.hpp"
 #include "gyro/world.hpp"
 
@@ -45,8 +46,9 @@ struct BodyStore {
   Column<uint32_t> type;   // BodyType
   Column<uint32_t> shape;  // BodyShape
   Column<float> radius;    // sphere radius (bounding radius for other shapes)
-  Column<float> hx, hy, hz;
+  Column<float> hx, hy, hz;  // box half extents; capsule radius, half height, 0
   Column<const TriangleMesh*> mesh{nullptr};
+  Column<const BodyHull*> hull{nullptr};  // owned by the world
   Column<float> friction, restitution;
   Column<uint32_t> category, mask;
   Column<uint32_t> flags;
@@ -58,7 +60,7 @@ struct BodyStore {
     f(id), f(px), f(py), f(pz), f(qx), f(qy), f(qz), f(qw), f(vx), f(vy), f(vz), f(wx), f(wy), f(wz);
     f(fx), f(fy), f(fz), f(tx), f(ty), f(tz), f(mass), f(inv_mass), f(inv_ix), f(inv_iy), f(inv_iz);
     f(linear_damping), f(angular_damping), f(gravity_scale), f(sleep_time);
-    f(type), f(shape), f(radius), f(hx), f(hy), f(hz), f(mesh), f(friction), f(restitution);
+    f(type), f(shape), f(radius), f(hx), f(hy), f(hz), f(mesh), f(hull), f(friction), f(restitution);
     f(category), f(mask), f(flags), f(user_data);
   }
 

@@ -24,6 +24,30 @@ Plane plane_of(const BodyStore& s, uint32_t i) {
 
 void flip(Manifold* m) { m->normal = -m->normal; }
 
+bool needs_generic(uint32_t shape) { return shape == uint32_t(BodyShape::capsule) || shape == uint32_t(BodyShape::hull); }
+
+// A body's shape for the generic path, posed in the frame given by (p, q).
+ConvexCollider collider_of(const BodyStore& s, uint32_t i, const vec3& p, const quat& q) {
+  ConvexCollider c;
+  c.pose.position = p;
+  c.pose.rotation = to_mat3(q);
+  switch (BodyShape(s.shape[i])) {
+    case BodyShape::sphere: c.shape.type = ConvexType::sphere, c.shape.radius = s.radius[i]; break;
+    case BodyShape::capsule:
+      c.shape.type = ConvexType::capsule, c.shape.radius = s.hx[i], c.shape.half_height = s.hy[i];
+      break;
+    case BodyShape::hull:
+      c.shape.type = ConvexType::points;
+      c.shape.points = s.hull[i]->hull.vertices.data();
+      c.shape.count = uint32_t(s.hull[i]->hull.vertices.size());
+      c.hull = &s.hull[i]->hull;
+      break;
+    default: c.shape.type = ConvexType::box, c.shape.half_extents = {s.hx[i], s.hy[i], s.hz[i]}; break;
+  }
+  return c;
+}
+ConvexCollider collider_of(const BodyStore& s, uint32_t i) { return collider_of(s, i, s.position(i), s.orientation(i)); }
+
 // The manifold of a convex pair (no mesh), normal from a to b.
 void collide_convex(const BodyStore& s, uint32_t a, uint32_t b, float margin, Manifold* m) {
   const auto sa = BodyShape(s.shape[a]), sb = BodyShape(s.shape[b]);
@@ -31,6 +55,15 @@ void collide_convex(const BodyStore& s, uint32_t a, uint32_t b, float margin, Ma
   const uint32_t p = swap ? b : a, q = swap ? a : b;
   const auto sp = swap ? sb : sa, sq = swap ? sa : sb;
   m->count = 0;
+  if (needs_generic(s.shape[a]) || needs_generic(s.shape[b])) {
+    // Planes come last in canonical order for these: the shape is p, the plane q.
+    const bool plane_first = sa == BodyShape::plane;
+    const uint32_t x = plane_first ? b : a, y = plane_first ? a : b;
+    if (BodyShape(s.shape[y]) == BodyShape::plane) collide_convex_plane(collider_of(s, x), plane_of(s, y), margin, m);
+    else collide_convex_shapes(collider_of(s, x), collider_of(s, y), margin, m);
+    if (plane_first) flip(m);
+    return;
+  }
   if (sp == BodyShape::sphere && sq == BodyShape::sphere) collide_spheres(sphere_of(s, p), sphere_of(s, q), margin, m);
   else if (sp == BodyShape::sphere && sq == BodyShape::box) collide_sphere_box(sphere_of(s, p), box_of(s, q), margin, m);
   else if (sp == BodyShape::box && sq == BodyShape::box) collide_boxes(box_of(s, p), box_of(s, q), margin, m);
@@ -47,9 +80,23 @@ uint32_t collide_mesh(const BodyStore& s, uint32_t body, uint32_t mesh, float ma
   const vec3 p_local = rotate(qm_inv, s.position(body) - pm);
   const quat q_local = qm_inv * s.orientation(body);
   const bool sphere = s.shape[body] == uint32_t(BodyShape::sphere);
+  const bool generic = needs_generic(s.shape[body]);
   const OBB box{p_local, {s.hx[body], s.hy[body], s.hz[body]}, to_mat3(q_local)};
-  const vec3 reach0 = sphere ? vec3{s.radius[body], s.radius[body], s.radius[body]}
-                             : aabb_half_extents(box.orientation, box.half_extents);
+  ConvexCollider shape;
+  vec3 reach0;
+  if (generic) {
+    shape = collider_of(s, body, p_local, q_local);
+    if (s.shape[body] == uint32_t(BodyShape::hull)) {
+      const AABB& lb = s.hull[body]->local_bounds;
+      reach0 = aabb_half_extents(shape.pose.rotation, lb.half_extents) + abs(rotate(q_local, lb.center));
+    } else {
+      const vec3 axis = rotate(q_local, vec3{0.0f, 1.0f, 0.0f});
+      reach0 = abs(axis) * s.hy[body] + vec3{s.hx[body], s.hx[body], s.hx[body]};
+    }
+  } else {
+    reach0 = sphere ? vec3{s.radius[body], s.radius[body], s.radius[body]}
+                    : aabb_half_extents(box.orientation, box.half_extents);
+  }
   const vec3 reach = reach0 + vec3{margin, margin, margin};
   uint32_t tris[kMaxMeshManifolds];
   const std::size_t found = s.mesh[mesh]->triangles_overlapping(AABB{p_local, reach}, tris, kMaxMeshManifolds);
@@ -58,8 +105,16 @@ uint32_t collide_mesh(const BodyStore& s, uint32_t body, uint32_t mesh, float ma
   for (uint32_t k = 0; k < n; ++k) {
     const Triangle t = s.mesh[mesh]->triangle(tris[k]);
     Manifold m;
-    if (sphere) collide_sphere_triangle(Sphere{p_local, s.radius[body]}, t, margin, &m);
-    else collide_box_triangle(box, t, margin, &m);
+    if (generic) {
+      ConvexCollider tri;
+      tri.shape.type = ConvexType::triangle;
+      tri.shape.v[0] = t.a, tri.shape.v[1] = t.b, tri.shape.v[2] = t.c;
+      collide_convex_shapes(shape, tri, margin, &m);
+    } else if (sphere) {
+      collide_sphere_triangle(Sphere{p_local, s.radius[body]}, t, margin, &m);
+    } else {
+      collide_box_triangle(box, t, margin, &m);
+    }
     if (m.count == 0) continue;
     m.normal = rotate(qm, m.normal);
     for (uint32_t j = 0; j < m.count; ++j) m.points[j].position = rotate(qm, m.points[j].position) + pm;
@@ -68,6 +123,17 @@ uint32_t collide_mesh(const BodyStore& s, uint32_t body, uint32_t mesh, float ma
     ++written;
   }
   return written;
+}
+
+// Last step's record of the convex pair (slots a, b in key order), or null.
+const ContactRecord* find_record(const std::vector<ContactRecord>& list, const BodyStore& s, uint32_t a, uint32_t b) {
+  const BodyId ia = s.id[a], ib = s.id[b];
+  const uint64_t key = (uint64_t{ia.index} << 32) | ib.index;
+  const auto it = std::lower_bound(list.begin(), list.end(), key,
+                                   [](const ContactRecord& r, uint64_t k) { return r.key < k; });
+  if (it == list.end() || it->key != key || it->sub != 0 || it->gen_a != ia.generation || it->gen_b != ib.generation)
+    return nullptr;
+  return &*it;
 }
 
 float motion_margin(const BodyStore& s, uint32_t a, uint32_t b, const ContactSettings& set) {
@@ -146,6 +212,13 @@ void ContactSet::update(const BodyStore& s, const std::vector<CandidatePair>& pa
       } else if (is_mesh(s, a)) {
         n = collide_mesh(s, b, a, margin, out, kMaxMeshManifolds);
         for (uint32_t k = 0; k < n; ++k) flip(&out[k].manifold);
+      } else if (set.incremental_convex && (needs_generic(s.shape[a]) || needs_generic(s.shape[b])) &&
+                 s.shape[a] != uint32_t(BodyShape::plane) && s.shape[b] != uint32_t(BodyShape::plane)) {
+        out->sub = 0;
+        const ContactRecord* old = find_record(records_, s, a, b);
+        collide_convex_incremental(collider_of(s, a), collider_of(s, b), margin, old ? &old->manifold : nullptr,
+                                   old ? &old->anchors : nullptr, &out->manifold, &out->anchors);
+        n = out->manifold.count > 0 ? 1 : 0;
       } else {
         out->sub = 0;
         collide_convex(s, a, b, margin, &out->manifold);

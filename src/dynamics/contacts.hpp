@@ -29,6 +29,7 @@ struct ContactRecord {
   /// Patch friction of the manifold (at the points' centre): along tangent 1, tangent 2 and
   /// about the normal (the tangents are a function of the normal, so they carry over).
   float friction_impulse[3] = {};
+  ContactAnchors anchors;  ///< incremental convex manifolds only
 
   uint32_t index_a() const { return uint32_t(key >> 32); }
   uint32_t index_b() const { return uint32_t(key); }
@@ -39,6 +40,7 @@ struct ContactRecord {
 struct ContactSettings {
   float speculative_distance = 0.02f;  ///< margin kept for every pair
   bool continuous = true;              ///< widen the margin by the motion of the step
+  bool incremental_convex = false;     ///< capsule/hull pairs: the arbiter approach, not clipping
   float dt = 0.0f;
 };
 

@@ -26,6 +26,12 @@ struct ContactPoint {
   uint32_t feature_id = 0;
 };
 
+/// Where a manifold's points sit on each body, in the bodies' frames (kept only by the
+/// incremental convex manifolds, which re-measure old points in later frames).
+struct ContactAnchors {
+  vec3 a[kMaxManifoldPoints], b[kMaxManifoldPoints];
+};
+
 struct Manifold {
   vec3 normal;  ///< unit, from A to B
   uint32_t count = 0;

@@ -27,6 +27,7 @@
 #pragma once
 
 #include "dynamics/manifold.hpp"
+#include "gyro/convex.hpp"
 #include "gyro/shapes.hpp"
 
 namespace gyro::detail {
@@ -46,6 +47,30 @@ void collide_sphere_triangle(const Sphere& a, const Triangle& b, float margin, M
 /// Separating axis over 13 axes (3 box faces, the triangle's normal, 9 edge pairs), then
 /// clipping as for two boxes with the triangle's face (preferred) or a box face as reference.
 void collide_box_triangle(const OBB& a, const Triangle& b, float margin, Manifold* out);
+
+/// A shape for the generic path (collide_convex.cpp): sphere, capsule, box, triangle, or a
+/// hull (shape.type points with `hull` set: its faces are used for clipping).
+struct ConvexCollider {
+  ConvexShape shape;
+  ConvexPose pose;
+  const ConvexHull* hull = nullptr;
+};
+/// Any pair of convex shapes: GJK/EPA for the normal and depth, then the incident feature
+/// (face, capsule segment or point) clipped against the reference face (within ~3 degrees of
+/// the normal, a's preferred) or, for parallel capsules, a's segment; else EPA's one point.
+/// Up to 4 points (the deepest, then the widest). Feature ids: a's feature << 22 | b's << 12
+/// | reference on b << 11 | single point << 10 | clip code.
+void collide_convex_shapes(const ConvexCollider& a, const ConvexCollider& b, float margin, Manifold* out);
+/// The appendix's arbiter approach, for comparison with clipping: one GJK/EPA point per
+/// frame, merged into the points kept from earlier frames (stored as anchors on both bodies,
+/// re-measured along the new normal, dropped once they separate beyond the margin or slide
+/// apart by 2 cm); a new point within 2 cm of a kept one replaces it and keeps its id; beyond
+/// 4 points the new one and the three old ones spanning the most area stay. Ids count up.
+void collide_convex_incremental(const ConvexCollider& a, const ConvexCollider& b, float margin, const Manifold* old,
+                                const ContactAnchors* old_anchors, Manifold* out, ContactAnchors* anchors);
+/// A capsule, hull (or any convex shape) against a ground plane: its vertices (capsule: the
+/// segment's ends) within the margin, reduced to 4; feature id = vertex index.
+void collide_convex_plane(const ConvexCollider& a, const Plane& b, float margin, Manifold* out);
 
 inline constexpr uint32_t kFeatureRefB = 1u << 12;
 inline constexpr uint32_t kFeatureEdge = 1u << 14;

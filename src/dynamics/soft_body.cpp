@@ -232,22 +232,10 @@ bool segment_meets(const vec3& lo, const vec3& hi, const vec3& s, const vec3& e,
 
 }  // namespace
 
-// Colliders are inflated by the thickness (spheres and boxes grow, planes move out), so a
-// particle resting on one is `thickness` from its true surface. Meshes are surfaces and keep
-// the thickness at the stop point instead.
-namespace {
-Collider inflated(const Collider& c, float t) {
-  Collider out = c;
-  switch (c.kind) {
-    case ColliderKind::sphere: out.sphere.radius = c.sphere.radius + t; break;
-    case ColliderKind::aabb: out.aabb.half_extents = c.aabb.half_extents + vec3{t, t, t}; break;
-    case ColliderKind::obb: out.obb.half_extents = c.obb.half_extents + vec3{t, t, t}; break;
-    case ColliderKind::plane: out.plane.distance = c.plane.distance + t; break;
-    default: break;
-  }
-  return out;
-}
-}  // namespace
+// Colliders are inflated by the thickness (detail::inflated: spheres, capsules and boxes
+// grow, planes and hull faces move out), so a particle resting on one is `thickness` from its
+// true surface. Meshes are surfaces and keep the thickness at the stop point instead.
+using detail::inflated;
 
 // Sweeps the particle from its sub-step start q to its solved position x through every
 // collider: at the first surface crossed it stops just outside and sweeps on with the

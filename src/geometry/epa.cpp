@@ -187,8 +187,8 @@ bool blow_up(Polytope& p, const PairFrame& pair, float eps, vec3& flat_normal) {
 }
 
 // Barycentric weights of q (on the plane of a, b, c) by areas in the best projection,
-// clamped to the triangle.
-void barycentric(const vec3& a, const vec3& b, const vec3& c, const vec3& q, float l[3]) {
+// clamped to the triangle. Returns whether q was inside (nothing clamped).
+bool barycentric(const vec3& a, const vec3& b, const vec3& c, const vec3& q, float l[3]) {
   const vec3 n = cross(b - a, c - a);
   const float ax = n.x < 0 ? -n.x : n.x, ay = n.y < 0 ? -n.y : n.y, az = n.z < 0 ? -n.z : n.z;
   const int k = (ax >= ay && ax >= az) ? 0 : (ay >= az ? 1 : 2);
@@ -199,13 +199,15 @@ void barycentric(const vec3& a, const vec3& b, const vec3& c, const vec3& q, flo
   float c0 = area(q, b, c), c1 = area(a, q, c), c2 = area(a, b, q);
   const float total = n[k];
   if (total < 0.0f) c0 = -c0, c1 = -c1, c2 = -c2;
+  const bool inside = c0 >= 0.0f && c1 >= 0.0f && c2 >= 0.0f;
   c0 = c0 > 0.0f ? c0 : 0.0f, c1 = c1 > 0.0f ? c1 : 0.0f, c2 = c2 > 0.0f ? c2 : 0.0f;
   const float s = (c0 + c1) + c2;
   if (!(s > 0.0f)) {
     l[0] = 1.0f, l[1] = 0.0f, l[2] = 0.0f;
-    return;
+    return false;
   }
   l[0] = c0 / s, l[1] = c1 / s, l[2] = c2 / s;
+  return inside;
 }
 
 // Spheres and capsules are curved only with their margins, which EPA on cores leaves out.
@@ -291,13 +293,30 @@ EpaOutcome epa(const PairFrame& pair, const Simplex& start, uint32_t max_iterati
     out.normal = flat_normal;
     return out;
   }
-  const Face& f = p.face[best];
+  const Face& bf = p.face[best];
   float l[3];
-  const vec3 q = f.n * f.d;
-  barycentric(p.vert[f.v[0]].w, p.vert[f.v[1]].w, p.vert[f.v[2]].w, q, l);
+  const vec3 q = bf.n * bf.d;
+  // A flat side of the Minkowski difference is several coplanar triangles at the same
+  // distance, and the closest by a rounding error need not be the one holding q: clamping q
+  // onto it would put the witnesses metres off on a 100:1 pair. Take the first coplanar
+  // live face that holds q.
+  int chosen = best;
+  if (!barycentric(p.vert[bf.v[0]].w, p.vert[bf.v[1]].w, p.vert[bf.v[2]].w, q, l)) {
+    for (int g = 0; g < p.nf; ++g) {
+      const Face& h = p.face[g];
+      if (g == best || h.dead || h.sliver || !(h.d - bf.d <= tol && bf.d - h.d <= tol) || dot(h.n, bf.n) < 0.9999f)
+        continue;
+      float m[3];
+      if (barycentric(p.vert[h.v[0]].w, p.vert[h.v[1]].w, p.vert[h.v[2]].w, q, m)) {
+        chosen = g, l[0] = m[0], l[1] = m[1], l[2] = m[2];
+        break;
+      }
+    }
+  }
+  const Face& f = p.face[chosen];
   for (int i = 0; i < 3; ++i) out.point_a += p.vert[f.v[i]].a * l[i], out.point_b += p.vert[f.v[i]].b * l[i];
-  out.normal = f.n;
-  out.depth = f.d > 0.0f ? f.d : 0.0f;  // the origin a rounding error outside: touching
+  out.normal = bf.n;  // the closest face's normal and depth; the chosen one only places the witnesses
+  out.depth = bf.d > 0.0f ? bf.d : 0.0f;  // the origin a rounding error outside: touching
   return out;
 }
 

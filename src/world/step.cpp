@@ -24,15 +24,24 @@ constexpr std::size_t kBodyChunk = 2048;  // integration is ~20 ns a body: small
 
 // World-space AABB half extents of a body's shape.
 vec3 shape_reach(const BodyStore& s, uint32_t i) {
-  if (s.shape[i] == uint32_t(BodyShape::sphere)) return {s.radius[i], s.radius[i], s.radius[i]};
-  const vec3 h = s.shape[i] == uint32_t(BodyShape::mesh) ? s.mesh[i]->bounds().half_extents
-                                                           : vec3{s.hx[i], s.hy[i], s.hz[i]};
-  return aabb_half_extents(to_mat3(s.orientation(i)), h);
+  switch (BodyShape(s.shape[i])) {
+    case BodyShape::sphere: return {s.radius[i], s.radius[i], s.radius[i]};
+    case BodyShape::capsule: {
+      const vec3 axis = rotate(s.orientation(i), vec3{0.0f, 1.0f, 0.0f});
+      const float r = s.hx[i], h = s.hy[i];
+      return abs(axis) * h + vec3{r, r, r};
+    }
+    case BodyShape::mesh: return aabb_half_extents(to_mat3(s.orientation(i)), s.mesh[i]->bounds().half_extents);
+    case BodyShape::hull: return aabb_half_extents(to_mat3(s.orientation(i)), s.hull[i]->local_bounds.half_extents);
+    default: return aabb_half_extents(to_mat3(s.orientation(i)), vec3{s.hx[i], s.hy[i], s.hz[i]});
+  }
 }
 
 vec3 shape_center(const BodyStore& s, uint32_t i) {
-  if (s.shape[i] != uint32_t(BodyShape::mesh)) return s.position(i);
-  return rotate(s.orientation(i), s.mesh[i]->bounds().center) + s.position(i);
+  if (s.shape[i] == uint32_t(BodyShape::mesh)) return rotate(s.orientation(i), s.mesh[i]->bounds().center) + s.position(i);
+  if (s.shape[i] == uint32_t(BodyShape::hull))
+    return rotate(s.orientation(i), s.hull[i]->local_bounds.center) + s.position(i);
+  return s.position(i);
 }
 
 }  // namespace
@@ -341,6 +350,7 @@ void World::Impl::step(float dt) {
     detail::ContactSettings cs;
     cs.speculative_distance = 4.0f * def.linear_slop;
     cs.continuous = def.enable_continuous;
+    cs.incremental_convex = def.convex_manifold == ConvexManifold::incremental;
     cs.dt = dt;
     contacts.update(s, candidates, active.data(), cs);
   }

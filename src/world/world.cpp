@@ -9,6 +9,8 @@
 #include "gyro/triangle_mesh.hpp"
 #include "world/world_impl.hpp"
 
+#include <new>
+
 namespace gyro {
 namespace {
 
@@ -48,6 +50,8 @@ Status World::create(const WorldDef& def, std::unique_ptr<World>* out) {
                           def.sleep_linear_velocity, def.sleep_angular_velocity};
   for (float v : nonneg)
     if (!is_finite(v) || v < 0.0f) return fail(Status::invalid_argument, "world settings must be finite and >= 0");
+  if (uint32_t(def.convex_manifold) > uint32_t(ConvexManifold::incremental))
+    return fail(Status::invalid_argument, "unknown convex manifold %u", unsigned(def.convex_manifold));
   if (def.baumgarte > 1.0f) return fail(Status::invalid_argument, "baumgarte must be in [0, 1]");
   if (def.threads > 1024) return fail(Status::invalid_count, "threads must be <= 1024");
   std::unique_ptr<World> w(new (std::nothrow) World());
@@ -70,16 +74,39 @@ Status World::create_body(const BodyDef& def, BodyId* out) {
   for (float v : materials)
     if (!is_finite(v) || v < 0.0f) return fail(Status::invalid_argument, "friction, restitution and damping must be finite and >= 0");
   if (!is_finite(def.gravity_scale)) return fail(Status::non_finite, "gravity_scale is not finite");
+  GYRO_TRY(detail::check_shape(def));
+  std::unique_ptr<detail::BodyHull> hull;
+  vec3 position = def.position;
+  if (def.shape.type == BodyShape::hull) {
+    hull.reset(new (std::nothrow) detail::BodyHull);
+    if (!hull) return fail(Status::out_of_memory, "hull");
+    GYRO_TRY(detail::make_body_hull(*def.shape.hull, hull.get()));
+    // The body frame is the mass frame: where the caller's frame puts the centroid, turned
+    // by the principal axes.
+    position = def.position - rotate(q * conjugate(hull->shape_rotation), hull->shape_offset);
+    q = normalized(q * conjugate(hull->shape_rotation));
+    if (!gyro::is_finite(position)) return fail(Status::non_finite, "hull position overflows");
+  }
   detail::MassProperties mp;
-  GYRO_TRY(detail::compute_mass(def, &mp));
+  GYRO_TRY(detail::compute_mass(def, hull.get(), &mp));
 
   detail::BodyStore& s = impl_->bodies;
   if (!s.reserve(s.size() + 1)) return fail(Status::out_of_memory, "bodies");
+  auto& hulls = impl_->hulls;
+  if (hull && hulls.size() <= s.ids.next_index()) {  // room before the id is taken: nothing to undo
+    try {
+      hulls.resize(std::size_t(s.ids.next_index()) + 1);
+    } catch (const std::bad_alloc&) {
+      return fail(Status::out_of_memory, "hulls");
+    }
+  }
   const detail::Id id = s.ids.create();
   const BodyId bid{id.index, id.generation};
+  if (hull) hulls[id.index] = std::move(hull);
+  const detail::BodyHull* body_hull = def.shape.type == BodyShape::hull ? hulls[id.index].get() : nullptr;
   const bool moves = def.type != BodyType::static_body;
   s.id.push_back(bid);
-  s.px.push_back(def.position.x), s.py.push_back(def.position.y), s.pz.push_back(def.position.z);
+  s.px.push_back(position.x), s.py.push_back(position.y), s.pz.push_back(position.z);
   s.qx.push_back(q.x), s.qy.push_back(q.y), s.qz.push_back(q.z), s.qw.push_back(q.w);
   const vec3 v = moves ? def.linear_velocity : vec3{}, w = moves ? def.angular_velocity : vec3{};
   s.vx.push_back(v.x), s.vy.push_back(v.y), s.vz.push_back(v.z);
@@ -92,11 +119,14 @@ Status World::create_body(const BodyDef& def, BodyId* out) {
   s.sleep_time.push_back(0.0f);
   s.type.push_back(uint32_t(def.type));
   s.shape.push_back(uint32_t(def.shape.type));
-  s.radius.push_back(def.shape.type == BodyShape::sphere ? def.shape.radius : detail::bounding_radius(def.shape));
-  const bool box = def.shape.type == BodyShape::box;
-  s.hx.push_back(box ? def.shape.half_extents.x : 0.0f), s.hy.push_back(box ? def.shape.half_extents.y : 0.0f);
+  s.radius.push_back(def.shape.type == BodyShape::sphere ? def.shape.radius
+                                                         : detail::bounding_radius(def.shape, body_hull));
+  const bool box = def.shape.type == BodyShape::box, capsule = def.shape.type == BodyShape::capsule;
+  s.hx.push_back(box ? def.shape.half_extents.x : capsule ? def.shape.radius : 0.0f);
+  s.hy.push_back(box ? def.shape.half_extents.y : capsule ? def.shape.half_height : 0.0f);
   s.hz.push_back(box ? def.shape.half_extents.z : 0.0f);
   s.mesh.push_back(def.shape.type == BodyShape::mesh ? def.shape.mesh : nullptr);
+  s.hull.push_back(body_hull);
   s.friction.push_back(def.friction), s.restitution.push_back(def.restitution);
   s.category.push_back(def.category), s.mask.push_back(def.mask);
   uint32_t flags = def.allow_sleep ? detail::kBodyAllowSleep : 0u;
@@ -128,6 +158,7 @@ Status World::destroy_body(BodyId id) {
   impl_->contacts.remove_body(id.index);
   const detail::IdPool::Removal rm = s.ids.destroy(detail::Id{id.index, id.generation});
   s.for_each_column([&](auto& c) { c.swap_remove(rm.slot); });
+  if (id.index < impl_->hulls.size()) impl_->hulls[id.index].reset();
   if (rm.moved_from != rm.slot) impl_->contacts.remap_slot(rm.moved_from, rm.slot);
   return Status::ok;
 }
@@ -155,6 +186,16 @@ Status World::set_transform(BodyId id, const vec3& position, const quat& orienta
   impl_->wake(k);
   for (const detail::ContactRecord& r : impl_->contacts.records())
     if (r.slot_a == k || r.slot_b == k) impl_->wake(r.slot_a == k ? r.slot_b : r.slot_a);
+  return Status::ok;
+}
+
+Status World::get_shape_frame(BodyId id, vec3* offset, quat* rotation) const {
+  uint32_t k = 0;
+  GYRO_TRY(slot_of(impl_->bodies, id, &k));
+  if (!offset && !rotation) return fail(Status::null_argument, "offset and rotation are both null");
+  const detail::BodyHull* h = impl_->bodies.hull[k];
+  if (offset) *offset = h ? h->shape_offset : vec3{};
+  if (rotation) *rotation = h ? h->shape_rotation : quat{};
   return Status::ok;
 }
 
@@ -377,6 +418,10 @@ void BodyStore::hash_into(StateHasher& h) const {
   for (std::size_t i = 0; i < n; ++i) {
     h.add_u64(user_data[i]);
     h.add_u64(mesh[i] ? mesh[i]->triangle_count() : 0);
+    if (hull[i]) {
+      h.add_u64((uint64_t{hull[i]->hull.vertices.size()} << 32) | hull[i]->hull.face_count());
+      for (const vec3& v : hull[i]->hull.vertices) h.add_float(v.x), h.add_float(v.y), h.add_float(v.z);
+    }
   }
 }
 

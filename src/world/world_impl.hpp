@@ -27,6 +27,7 @@ struct World::Impl {
   std::unique_ptr<ParticleSystem> particles;  // created on first use: a world without particles pays nothing
   detail::IdPool soft_pool;                    // soft bodies: ids over dense slots
   std::vector<std::unique_ptr<SoftBody>> soft_bodies;  // soft_bodies[slot]
+  std::vector<std::unique_ptr<detail::BodyHull>> hulls;  // hull bodies' shapes, by body id index
   StepTimings timings;
   StepStats stats;
   uint64_t steps = 0;

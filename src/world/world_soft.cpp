@@ -60,7 +60,7 @@ void World::Impl::step_soft_bodies(float dt) {
       const vec3 p{s.px[i], s.py[i], s.pz[i]};
       const quat q{s.qx[i], s.qy[i], s.qz[i], s.qw[i]};
       detail::Collider c;
-      vec3 half;
+      vec3 half, centre = p;
       switch (static_cast<BodyShape>(s.shape[i])) {
         case BodyShape::sphere:
           c.kind = detail::ColliderKind::sphere, c.sphere = {p, s.radius[i]};
@@ -89,10 +89,26 @@ void World::Impl::step_soft_bodies(float dt) {
           if (meets) soft_meshes.push_back({mesh, p, q});
           continue;
         }
+        case BodyShape::capsule: {
+          const vec3 axis = rotate(q, vec3{0.0f, 1.0f, 0.0f});
+          const float r = s.hx[i], hh = s.hy[i];
+          c.kind = detail::ColliderKind::capsule;
+          c.capsule = {p - axis * hh, p + axis * hh, r};
+          half = abs(axis) * hh + vec3{r, r, r};
+          break;
+        }
+        case BodyShape::hull: {
+          const detail::BodyHull& bh = *s.hull[i];
+          c.kind = detail::ColliderKind::hull;
+          c.hull = {&bh.hull, p, to_mat3(q), 0.0f};
+          centre = p + rotate(q, bh.local_bounds.center);
+          half = aabb_half_extents(c.hull.rotation, bh.local_bounds.half_extents);
+          break;
+        }
         default: continue;
       }
       bool meets = true;
-      for (int k = 0; k < 3; ++k) meets = meets && p[k] - half[k] <= hi[k] && p[k] + half[k] >= lo[k];
+      for (int k = 0; k < 3; ++k) meets = meets && centre[k] - half[k] <= hi[k] && centre[k] + half[k] >= lo[k];
       if (meets) soft_shapes.push_back(c);
     }
     detail::SoftAccess::step_with(*body, dt, soft_shapes, soft_meshes);

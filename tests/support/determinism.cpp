@@ -16,6 +16,7 @@
 #endif
 #include "workloads.hpp"
 #if defined(GYRO_HAS_DYNAMICS)
+#include "gyro/convex.hpp"
 #include "gyro/particles.hpp"
 #include "gyro/soft_body.hpp"
 #include "gyro/world.hpp"
@@ -537,6 +538,80 @@ uint64_t scene_soft_cloth() {
   }
   return h.digest();
 }
+
+// Capsules and hulls (cubes, prisms, random point clouds) with spheres and boxes on a plane,
+// a mesh ramp and each other, under both convex manifold models; a hull destroyed midway.
+uint64_t scene_convex_bodies() {
+  detail::StateHasher h;
+  static const TriangleMesh ramp = [] {
+    TriangleMesh m;
+    MeshData grid = make_grid_mesh(6, 6, 1.0f, [](float x, float z, void*) { return 0.2f * x - 0.05f * z; });
+    TriangleMesh::create(grid, m);
+    return m;
+  }();
+  SplitMix64 rng(2026);
+  std::vector<ConvexHull> hulls(4);
+  {
+    std::vector<vec3> pts;
+    for (int i = 0; i < 8; ++i) pts.push_back({(i & 1) ? 0.3f : -0.3f, (i & 2) ? 0.2f : -0.2f, (i & 4) ? 0.4f : -0.4f});
+    if (build_convex_hull(pts.data(), pts.size(), hulls[0]) != Status::ok) return 0;
+    pts.clear();
+    for (int i = 0; i < 5; ++i) {
+      float sn, cs;
+      gyro::sincos(1.2566371f * float(i), &sn, &cs);
+      pts.push_back({0.35f * cs, -0.15f, 0.35f * sn}), pts.push_back({0.35f * cs, 0.15f, 0.35f * sn});
+    }
+    if (build_convex_hull(pts.data(), pts.size(), hulls[1]) != Status::ok) return 0;
+    for (int k = 2; k < 4; ++k) {
+      pts.clear();
+      for (int i = 0; i < 24; ++i) {
+        const float x = float(rng.u()), y = float(rng.u()), z = float(rng.u());
+        pts.push_back({0.6f * x - 0.3f + 0.1f, 0.5f * y - 0.25f, 0.6f * z - 0.3f});
+      }
+      if (build_convex_hull(pts.data(), pts.size(), hulls[std::size_t(k)]) != Status::ok) return 0;
+    }
+  }
+  for (ConvexManifold model : {ConvexManifold::clipping, ConvexManifold::incremental}) {
+    WorldDef def;
+    def.convex_manifold = model;
+    std::unique_ptr<World> w;
+    if (World::create(def, &w) != Status::ok) return 0;
+    BodyId id;
+    BodyDef d;
+    d.type = BodyType::static_body;
+    d.shape.type = BodyShape::plane;
+    if (w->create_body(d, &id) != Status::ok) return 0;
+    d.shape.type = BodyShape::mesh;
+    d.shape.mesh = &ramp;
+    d.position = {4.0f, 0.01f, -3.0f};
+    if (w->create_body(d, &id) != Status::ok) return 0;
+    std::vector<BodyId> bodies;
+    SplitMix64 r(99);
+    for (int k = 0; k < 24; ++k) {
+      const float u[5] = {float(r.u()), float(r.u()), float(r.u()), float(r.u()), float(r.u())};
+      BodyDef b;
+      const int kind = k % 6;
+      b.shape.type = kind == 0 ? BodyShape::capsule : kind == 1 ? BodyShape::sphere : kind == 2 ? BodyShape::box
+                                                                                    : BodyShape::hull;
+      b.shape.radius = 0.15f + 0.1f * u[0];
+      b.shape.half_height = 0.2f + 0.2f * u[1];
+      b.shape.half_extents = {0.25f, 0.2f + 0.1f * u[0], 0.3f};
+      b.shape.hull = &hulls[std::size_t(k % 4)];
+      b.position = {5.0f * u[1] - 2.5f, 1.0f + 0.5f * float(k), 4.0f * u[2] - 2.0f};
+      b.orientation = from_axis_angle({u[3], 1.0f, u[1]}, 3.0f * u[4]);
+      b.friction = 0.3f + 0.5f * u[0];
+      b.angular_velocity = {u[2] - 0.5f, 0.0f, u[3] - 0.5f};
+      if (w->create_body(b, &id) != Status::ok) return 0;
+      bodies.push_back(id);
+    }
+    for (int step = 1; step <= 240; ++step) {
+      if (step == 60 && w->destroy_body(bodies[3]) != Status::ok) return 0;
+      if (w->step(1.0f / 60.0f) != Status::ok) return 0;
+      if (step % 10 == 0) h.add_u64(w->hash());
+    }
+  }
+  return h.digest();
+}
 #endif
 
 const DetScene kScenes[] = {
@@ -555,6 +630,7 @@ const DetScene kScenes[] = {
     {"world_pile", scene_world_pile, 0x754cdfcd63378e65ull},
     {"world_particles", scene_world_particles, 0x8e3766db8d8855a1ull},
     {"soft_cloth", scene_soft_cloth, 0x4b131c88424dd139ull},
+    {"convex_bodies", scene_convex_bodies, 0x45809748c4eecc2eull},
 #endif
 };
 

@@ -1,0 +1,383 @@
+// The C ABI of convex shapes (ABI 1.4): hull handles and their getters and mass properties,
+// and GJK/EPA queries on arrays of pairs, over gyro/convex.hpp.
+//
+// Whole-call errors (NULL arrays, negative counts) are found before anything is written. A
+// pair that cannot be answered is flagged GYRO_CONVEX_INVALID_INPUT by the C layer's own
+// per-pair check (so the verdict does not depend on what the C++ query accepts) or by the
+// query itself; the other pairs are answered. Pairs run in fixed chunks (parallel_for), each
+// result written by one chunk, so the output is the same at every thread count.
+#define GYRO_BUILDING 1
+#include "gyro.h"
+
+#include "capi_convex.hpp"
+#include "capi_support.hpp"
+#include "core/parallel.hpp"
+#include "core/validate.hpp"
+#include "gyro/convex.hpp"
+#include "gyro/math_quat.hpp"
+
+#include <climits>
+#include <cstddef>
+#include <cstring>
+#include <memory>
+#include <type_traits>
+
+namespace {
+
+using gyro::Status;
+using gyro::capi::c_v3;
+using gyro::capi::check_count;
+using gyro::capi::check_finite;
+using gyro::capi::guarded;
+using gyro::capi::require;
+using gyro::capi::v3;
+using gyro::detail::fail;
+using gyro::detail::is_finite;
+
+// Plain-data layouts every binding relies on.
+static_assert(sizeof(gyro_convex_hull_info) == 16 && sizeof(gyro_convex_plane) == 16 &&
+              sizeof(gyro_convex_edge) == 8 && sizeof(gyro_convex_mass) == 100 && sizeof(gyro_convex_pose) == 48 &&
+              sizeof(gyro_convex_result) == 48 && sizeof(gyro_convex_type) == 4 && sizeof(gyro_convex_status) == 4);
+static_assert(sizeof(void*) != 8 || (sizeof(gyro_convex_shape) == 72 && offsetof(gyro_convex_shape, hull) == 64));
+static_assert(offsetof(gyro_convex_shape, reserved) == 60 && offsetof(gyro_convex_result, iterations) == 44);
+static_assert(uint32_t(gyro::ConvexType::sphere) == GYRO_CONVEX_SPHERE &&
+              uint32_t(gyro::ConvexType::box) == GYRO_CONVEX_BOX &&
+              uint32_t(gyro::ConvexType::capsule) == GYRO_CONVEX_CAPSULE &&
+              uint32_t(gyro::ConvexType::cylinder) == GYRO_CONVEX_CYLINDER &&
+              uint32_t(gyro::ConvexType::triangle) == GYRO_CONVEX_TRIANGLE &&
+              uint32_t(gyro::ConvexType::points) == GYRO_CONVEX_HULL);
+static_assert(uint32_t(gyro::ConvexStatus::separated) == GYRO_CONVEX_SEPARATED &&
+              uint32_t(gyro::ConvexStatus::touching) == GYRO_CONVEX_TOUCHING &&
+              uint32_t(gyro::ConvexStatus::intersecting) == GYRO_CONVEX_INTERSECTING &&
+              uint32_t(gyro::ConvexStatus::iteration_limit) == GYRO_CONVEX_ITERATION_LIMIT &&
+              uint32_t(gyro::ConvexStatus::invalid_input) == GYRO_CONVEX_INVALID_INPUT);
+// The C points array is read as gyro::vec3 in place.
+static_assert(sizeof(gyro_vec3) == sizeof(gyro::vec3) && alignof(gyro_vec3) == alignof(gyro::vec3) &&
+              std::is_standard_layout_v<gyro::vec3>);
+
+/// Pairs per parallel chunk: a function of nothing but this constant, so the chunks (and the
+/// results) never depend on the thread count. A query takes about a microsecond.
+constexpr std::size_t kPairChunk = 64;
+
+/// How far a pose's rotation rows may be from orthonormal (dot products within this of 0 or 1).
+constexpr float kRotationTolerance = 1e-3f;
+
+Status require_hull(const gyro_convex_hull* h) { return require(h, "hull"); }
+
+// ---- the copy-out getters: *count = n, the first min(capacity, n) elements written ----
+
+Status check_copy_args(const gyro_convex_hull* hull, const void* out, int32_t capacity, const int32_t* count) {
+  GYRO_TRY(require_hull(hull));
+  GYRO_TRY(require(count, "count"));
+  GYRO_TRY(check_count(capacity, "capacity"));
+  if (capacity > 0 && !out) return fail(Status::null_argument, "out is null and capacity = %d", capacity);
+  return Status::ok;
+}
+
+Status fits_int32(std::size_t n, const char* name) {
+  return n <= std::size_t(INT32_MAX) ? Status::ok
+                                     : fail(Status::invalid_count, "%s = %zu does not fit an int32_t", name, n);
+}
+
+/// Checks, then writes convert(i) to out[i] for i < min(capacity, n) and n to *count.
+template <class T, class Convert>
+Status copy_out(T* out, int32_t capacity, int32_t* count, std::size_t n, const char* name, Convert&& convert) {
+  GYRO_TRY(fits_int32(n, name));
+  const std::size_t m = std::size_t(capacity) < n ? std::size_t(capacity) : n;
+  for (std::size_t i = 0; i < m; ++i) out[i] = convert(i);
+  *count = int32_t(n);
+  return Status::ok;
+}
+
+// ---- the per-pair check and conversion ----
+
+float dot3(const gyro_vec3& a, const gyro_vec3& b) { return (a.x * b.x + a.y * b.y) + a.z * b.z; }
+
+bool finite3(const gyro_vec3& v) { return is_finite(v.x) && is_finite(v.y) && is_finite(v.z); }
+
+/// Why a shape cannot be answered (nullptr: it can), and the C++ shape when it can.
+const char* shape_of(const gyro_convex_shape& c, gyro::ConvexShape& out) {
+  if (c.reserved != 0) return "reserved is not 0";
+  if (c.type > GYRO_CONVEX_HULL) return "unknown type";
+  if (c.type == GYRO_CONVEX_HULL) {
+    if (!c.hull) return "hull is null";
+  } else if (c.hull) {
+    return "hull is set for a type other than GYRO_CONVEX_HULL";
+  }
+  gyro::ConvexShape s;
+  s.type = static_cast<gyro::ConvexType>(c.type);
+  switch (c.type) {
+    case GYRO_CONVEX_SPHERE:
+      s.radius = c.radius;
+      break;
+    case GYRO_CONVEX_BOX:
+      s.half_extents = v3(c.half_extents);
+      break;
+    case GYRO_CONVEX_CAPSULE:
+    case GYRO_CONVEX_CYLINDER:
+      s.radius = c.radius, s.half_height = c.half_height;
+      break;
+    case GYRO_CONVEX_TRIANGLE:
+      for (int k = 0; k < 3; ++k) s.v[k] = v3(c.triangle[k]);
+      break;
+    default:  // GYRO_CONVEX_HULL: its vertices were checked finite when it was built
+      s = c.hull->hull.shape();
+      break;
+  }
+  const bool finite = is_finite(s.radius) && is_finite(s.half_height) && is_finite(s.half_extents.x) &&
+                      is_finite(s.half_extents.y) && is_finite(s.half_extents.z) && is_finite(s.v[0].x) &&
+                      is_finite(s.v[0].y) && is_finite(s.v[0].z) && is_finite(s.v[1].x) && is_finite(s.v[1].y) &&
+                      is_finite(s.v[1].z) && is_finite(s.v[2].x) && is_finite(s.v[2].y) && is_finite(s.v[2].z);
+  if (!finite) return "a size or corner is NaN or infinite";
+  if (s.radius < 0.0f || s.half_height < 0.0f || s.half_extents.x < 0.0f || s.half_extents.y < 0.0f ||
+      s.half_extents.z < 0.0f)
+    return "a size is negative";
+  out = s;
+  return nullptr;
+}
+
+/// Why a pose cannot be used (nullptr: it can), and the C++ pose when it can.
+const char* pose_of(const gyro_convex_pose& c, gyro::ConvexPose& out) {
+  if (!finite3(c.position) || !finite3(c.rotation[0]) || !finite3(c.rotation[1]) || !finite3(c.rotation[2]))
+    return "the pose has a NaN or infinite value";
+  const gyro_vec3 &r0 = c.rotation[0], &r1 = c.rotation[1], &r2 = c.rotation[2];
+  const float t = kRotationTolerance;
+  const float n0 = dot3(r0, r0) - 1.0f, n1 = dot3(r1, r1) - 1.0f, n2 = dot3(r2, r2) - 1.0f;
+  const float o01 = dot3(r0, r1), o02 = dot3(r0, r2), o12 = dot3(r1, r2);
+  const bool unit = n0 <= 2.0f * t && n0 >= -2.0f * t && n1 <= 2.0f * t && n1 >= -2.0f * t && n2 <= 2.0f * t &&
+                    n2 >= -2.0f * t;
+  const bool orthogonal = o01 <= t && o01 >= -t && o02 <= t && o02 >= -t && o12 <= t && o12 >= -t;
+  // det = r0 . (r1 x r2): +1 for a rotation, -1 for a reflection.
+  const gyro_vec3 cross{r1.y * r2.z - r1.z * r2.y, r1.z * r2.x - r1.x * r2.z, r1.x * r2.y - r1.y * r2.x};
+  if (!unit || !orthogonal || !(dot3(r0, cross) > 0.0f))
+    return "the pose's rotation rows are not orthonormal and right-handed";
+  gyro::ConvexPose p;
+  p.position = v3(c.position);
+  for (int r = 0; r < 3; ++r) {
+    p.rotation.m[r][0] = c.rotation[r].x, p.rotation.m[r][1] = c.rotation[r].y, p.rotation.m[r][2] = c.rotation[r].z;
+  }
+  out = p;
+  return nullptr;
+}
+
+/// Why pair i cannot be answered, prefixed by which input ("a", "pa", "b", "pb"); nullptr if it can.
+const char* pair_of(const gyro_convex_shape& a, const gyro_convex_pose& pa, const gyro_convex_shape& b,
+                    const gyro_convex_pose& pb, gyro::ConvexShape& sa, gyro::ConvexPose& qa, gyro::ConvexShape& sb,
+                    gyro::ConvexPose& qb, const char** which) {
+  const char* why = nullptr;
+  if ((why = shape_of(a, sa))) return *which = "a", why;
+  if ((why = pose_of(pa, qa))) return *which = "pa", why;
+  if ((why = shape_of(b, sb))) return *which = "b", why;
+  if ((why = pose_of(pb, qb))) return *which = "pb", why;
+  return nullptr;
+}
+
+gyro_convex_result c_result(const gyro::ConvexResult& r) {
+  gyro_convex_result c;
+  std::memset(&c, 0, sizeof c);
+  c.status = static_cast<gyro_convex_status>(r.status);
+  c.distance = r.distance;
+  c.normal = c_v3(r.normal);
+  c.point_a = c_v3(r.point_a);
+  c.point_b = c_v3(r.point_b);
+  c.iterations = r.iterations;
+  return c;
+}
+
+gyro_convex_result invalid_result() {
+  gyro_convex_result c;
+  std::memset(&c, 0, sizeof c);
+  c.status = GYRO_CONVEX_INVALID_INPUT;
+  return c;
+}
+
+enum class Query { intersect, distance, penetration };
+
+gyro_status run_pairs(const gyro_convex_shape* a, const gyro_convex_pose* pa, const gyro_convex_shape* b,
+                      const gyro_convex_pose* pb, int32_t count, gyro_convex_result* out, Query query) {
+  return guarded([&]() -> Status {
+    GYRO_TRY(check_count(count, "count"));
+    if (count == 0) return Status::ok;
+    GYRO_TRY(require(a, "a"));
+    GYRO_TRY(require(pa, "pa"));
+    GYRO_TRY(require(b, "b"));
+    GYRO_TRY(require(pb, "pb"));
+    GYRO_TRY(require(out, "out"));
+    const gyro::ConvexQueryOptions options;
+    // Nothing below allocates or throws: the chunks run on OpenMP threads.
+    gyro::detail::parallel_for(std::size_t(count), kPairChunk, [&](std::size_t begin, std::size_t end) {
+      for (std::size_t i = begin; i < end; ++i) {
+        gyro::ConvexShape sa, sb;
+        gyro::ConvexPose qa, qb;
+        const char* which = nullptr;
+        if (pair_of(a[i], pa[i], b[i], pb[i], sa, qa, sb, qb, &which)) {
+          out[i] = invalid_result();
+          continue;
+        }
+        gyro::ConvexResult r;
+        switch (query) {
+          case Query::intersect: r = gyro::convex_intersect(sa, qa, sb, qb, options); break;
+          case Query::distance: r = gyro::convex_distance(sa, qa, sb, qb, options); break;
+          case Query::penetration: r = gyro::convex_penetration(sa, qa, sb, qb, options); break;
+        }
+        out[i] = r.status == gyro::ConvexStatus::invalid_input ? invalid_result() : c_result(r);
+      }
+    });
+    // The first invalid pair's reason, on the calling thread (in index order: deterministic).
+    for (int32_t i = 0; i < count; ++i) {
+      if (out[i].status != GYRO_CONVEX_INVALID_INPUT) continue;
+      gyro::ConvexShape sa, sb;
+      gyro::ConvexPose qa, qb;
+      const char* which = nullptr;
+      const char* why = pair_of(a[i], pa[i], b[i], pb[i], sa, qa, sb, qb, &which);
+      if (why)
+        fail(Status::invalid_argument, "pair %d is GYRO_CONVEX_INVALID_INPUT: %s[%d]: %s", i, which, i, why);
+      else
+        fail(Status::non_finite, "pair %d is GYRO_CONVEX_INVALID_INPUT: the query overflowed (values too large)", i);
+      break;
+    }
+    return Status::ok;
+  });
+}
+
+gyro_vec3 row_of(const gyro::mat3& m, int r) { return {m.m[r][0], m.m[r][1], m.m[r][2]}; }
+
+}  // namespace
+
+extern "C" {
+
+GYRO_API gyro_status gyro_convex_hull_create(const gyro_vec3* points, int32_t count, gyro_convex_hull** out) {
+  return guarded([&]() -> Status {
+    GYRO_TRY(require(out, "out"));
+    GYRO_TRY(check_count(count, "count"));
+    auto h = std::make_unique<gyro_convex_hull>();
+    GYRO_TRY(gyro::build_convex_hull(reinterpret_cast<const gyro::vec3*>(points), std::size_t(count), h->hull));
+    *out = h.release();
+    return Status::ok;
+  });
+}
+
+GYRO_API void gyro_convex_hull_destroy(gyro_convex_hull* hull) { delete hull; }
+
+GYRO_API gyro_status gyro_convex_hull_get_info(const gyro_convex_hull* hull, gyro_convex_hull_info* out) {
+  return guarded([&]() -> Status {
+    GYRO_TRY(require_hull(hull));
+    GYRO_TRY(require(out, "out"));
+    const gyro::ConvexHull& h = hull->hull;
+    GYRO_TRY(fits_int32(h.vertices.size(), "vertex count"));
+    GYRO_TRY(fits_int32(h.face_count(), "face count"));
+    GYRO_TRY(fits_int32(h.edge_count(), "edge count"));
+    GYRO_TRY(fits_int32(h.face_vertices.size(), "face vertex count"));
+    gyro_convex_hull_info info;
+    info.vertex_count = int32_t(h.vertices.size());
+    info.face_count = int32_t(h.face_count());
+    info.edge_count = int32_t(h.edge_count());
+    info.face_vertex_count = int32_t(h.face_vertices.size());
+    *out = info;
+    return Status::ok;
+  });
+}
+
+GYRO_API gyro_status gyro_convex_hull_get_vertices(const gyro_convex_hull* hull, gyro_vec3* out, int32_t capacity,
+                                                   int32_t* count) {
+  return guarded([&]() -> Status {
+    GYRO_TRY(check_copy_args(hull, out, capacity, count));
+    const auto& v = hull->hull.vertices;
+    return copy_out(out, capacity, count, v.size(), "vertex count", [&](std::size_t i) { return c_v3(v[i]); });
+  });
+}
+
+GYRO_API gyro_status gyro_convex_hull_get_planes(const gyro_convex_hull* hull, gyro_convex_plane* out,
+                                                 int32_t capacity, int32_t* count) {
+  return guarded([&]() -> Status {
+    GYRO_TRY(check_copy_args(hull, out, capacity, count));
+    const auto& p = hull->hull.planes;
+    return copy_out(out, capacity, count, p.size(), "face count", [&](std::size_t i) {
+      return gyro_convex_plane{c_v3(p[i].normal), p[i].distance};
+    });
+  });
+}
+
+GYRO_API gyro_status gyro_convex_hull_get_face_starts(const gyro_convex_hull* hull, uint32_t* out, int32_t capacity,
+                                                      int32_t* count) {
+  return guarded([&]() -> Status {
+    GYRO_TRY(check_copy_args(hull, out, capacity, count));
+    const auto& s = hull->hull.face_start;
+    return copy_out(out, capacity, count, s.size(), "face start count", [&](std::size_t i) { return s[i]; });
+  });
+}
+
+GYRO_API gyro_status gyro_convex_hull_get_face_vertices(const gyro_convex_hull* hull, uint32_t* out, int32_t capacity,
+                                                        int32_t* count) {
+  return guarded([&]() -> Status {
+    GYRO_TRY(check_copy_args(hull, out, capacity, count));
+    const auto& f = hull->hull.face_vertices;
+    return copy_out(out, capacity, count, f.size(), "face vertex count", [&](std::size_t i) { return f[i]; });
+  });
+}
+
+GYRO_API gyro_status gyro_convex_hull_get_edges(const gyro_convex_hull* hull, gyro_convex_edge* out,
+                                                int32_t capacity, int32_t* count) {
+  return guarded([&]() -> Status {
+    GYRO_TRY(check_copy_args(hull, out, capacity, count));
+    const auto& e = hull->hull.edges;
+    return copy_out(out, capacity, count, e.size() / 2, "edge count", [&](std::size_t i) {
+      return gyro_convex_edge{e[2 * i], e[2 * i + 1]};
+    });
+  });
+}
+
+GYRO_API gyro_status gyro_convex_hull_mass(const gyro_convex_hull* hull, gyro_convex_mass* out) {
+  return guarded([&]() -> Status {
+    GYRO_TRY(require_hull(hull));
+    GYRO_TRY(require(out, "out"));
+    gyro::ConvexMass m;
+    GYRO_TRY(gyro::convex_hull_mass(hull->hull, m));
+    gyro_convex_mass c;
+    std::memset(&c, 0, sizeof c);
+    c.volume = m.volume;
+    c.centroid = c_v3(m.centroid);
+    c.principal_moments = c_v3(m.principal_moments);
+    for (int r = 0; r < 3; ++r) c.inertia[r] = row_of(m.inertia, r), c.principal_axes[r] = row_of(m.principal_axes, r);
+    *out = c;
+    return Status::ok;
+  });
+}
+
+GYRO_API gyro_status gyro_convex_pose_from_quat(gyro_vec3 position, gyro_quat orientation, gyro_convex_pose* out) {
+  return guarded([&]() -> Status {
+    GYRO_TRY(require(out, "out"));
+    GYRO_TRY(check_finite(position, "position"));
+    const gyro_quat& q = orientation;
+    if (!is_finite(q.x) || !is_finite(q.y) || !is_finite(q.z) || !is_finite(q.w))
+      return fail(Status::non_finite, "orientation has a NaN or infinite component");
+    if (q.x == 0.0f && q.y == 0.0f && q.z == 0.0f && q.w == 0.0f)
+      return fail(Status::invalid_argument, "orientation is the zero quaternion");
+    const gyro::mat3 m = gyro::to_mat3(gyro::normalized(gyro::quat{q.x, q.y, q.z, q.w}));
+    gyro_convex_pose p;
+    p.position = position;
+    for (int r = 0; r < 3; ++r) p.rotation[r] = row_of(m, r);
+    *out = p;
+    return Status::ok;
+  });
+}
+
+GYRO_API gyro_status gyro_convex_intersect_pairs(const gyro_convex_shape* a, const gyro_convex_pose* pa,
+                                                 const gyro_convex_shape* b, const gyro_convex_pose* pb,
+                                                 int32_t count, gyro_convex_result* out) {
+  return run_pairs(a, pa, b, pb, count, out, Query::intersect);
+}
+
+GYRO_API gyro_status gyro_convex_distance_pairs(const gyro_convex_shape* a, const gyro_convex_pose* pa,
+                                                const gyro_convex_shape* b, const gyro_convex_pose* pb,
+                                                int32_t count, gyro_convex_result* out) {
+  return run_pairs(a, pa, b, pb, count, out, Query::distance);
+}
+
+GYRO_API gyro_status gyro_convex_penetration_pairs(const gyro_convex_shape* a, const gyro_convex_pose* pa,
+                                                   const gyro_convex_shape* b, const gyro_convex_pose* pb,
+                                                   int32_t count, gyro_convex_result* out) {
+  return run_pairs(a, pa, b, pb, count, out, Query::penetration);
+}
+
+}  // extern "C"
