@@ -1,6 +1,8 @@
 // GJK workload: the N1 pairs (BENCHMARKS.md, 10^6 OBB pairs) through generic convex
 // queries: gyro's GJK intersection, GJK distance and GJK+EPA penetration (gyro/convex.hpp),
-// and with --peers libccd (GJK and MPR intersection, GJK+EPA and MPR penetration) and
+// then the box-pair batches (convex_intersect_batch, convex_distance_batch,
+// convex_penetration_batch: GJK over SIMD lanes, per level, results bit-identical to the
+// scalar queries), and with --peers libccd (GJK and MPR intersection, GJK+EPA and MPR penetration) and
 // Bullet (btGjkEpaSolver2 Distance / Penetration, btGjkPairDetector with its GJK-EPA depth
 // solver; box margins 0) on the same pairs in the same run.
 //
@@ -16,6 +18,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #if defined(GYRO_BENCH_HAS_BULLET)
 #include <BulletCollision/CollisionShapes/btBoxShape.h>
@@ -113,8 +116,9 @@ void run_gyro(const BoxPairs& p, const std::vector<double>& sep, std::size_t n, 
   }
 }
 
-// convex_intersect_batch over the SoA box columns, per SIMD level (the verdicts are those
-// of convex_intersect at every level; the checksum line says whether they matched).
+// The box-pair batches (convex_intersect_batch, convex_distance_batch,
+// convex_penetration_batch) over the SoA box columns, per SIMD level: their results are the
+// scalar queries' bit for bit at every level (a warning line says if the levels differ).
 void run_gyro_batch(const BoxPairs& p, const std::vector<double>& sep, std::size_t n, const Options& o) {
   ConvexBoxPairs pairs;
   auto fill = [](const BoxSet& s, const float* (&c)[3], const float* (&h)[3], const float* (&r)[9]) {
@@ -137,6 +141,31 @@ void run_gyro_batch(const BoxPairs& p, const std::vector<double>& sep, std::size
         [](std::size_t) { return kNan; });
     if (out != first) std::printf("# WARNING: gjk_intersect_batch verdicts differ between SIMD levels\n");
     emit("gyro", "gjk_intersect_batch", simd_level_name(level), ms, n, s, false, false, o.reps, limits);
+  }
+  const struct {
+    const char* name;
+    void (*fn)(const ConvexBoxPairs&, std::size_t, ConvexResult*, const ConvexQueryOptions&);
+    bool depth;
+  } methods[] = {{"gjk_distance_batch", convex_distance_batch, false},
+                 {"gjk_epa_penetration_batch", convex_penetration_batch, true}};
+  std::vector<ConvexResult> res(n), res_first;
+  for (const auto& m : methods) {
+    res_first.clear();
+    for (SimdLevel level : levels_to_run(o)) {
+      set_simd_level(level);
+      const double ms = median_ms(o.reps, [&] { m.fn(pairs, n, res.data(), ConvexQueryOptions{}); });
+      bool same = true;
+      if (res_first.empty()) res_first = res;
+      else
+        for (std::size_t i = 0; i < n && same; ++i) same = std::memcmp(&res[i], &res_first[i], sizeof(ConvexResult)) == 0;
+      if (!same) std::printf("# WARNING: %s results differ between SIMD levels\n", m.name);
+      std::size_t limits = 0;
+      for (std::size_t i = 0; i < n; ++i) limits += res[i].status == ConvexStatus::iteration_limit;
+      const Score s = score(
+          sep, n, [&](std::size_t i) { return overlapping(res[i].status); },
+          [&](std::size_t i) { return -double(res[i].distance); }, [&](std::size_t i) { return double(res[i].distance); });
+      emit("gyro", m.name, simd_level_name(level), ms, n, s, m.depth, true, o.reps, limits);
+    }
   }
   set_simd_level(SimdLevel::automatic);
 }

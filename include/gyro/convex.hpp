@@ -132,9 +132,8 @@ struct ConvexBoxPairs {
 };
 
 /// convex_intersect(box A_i, box B_i).status for i in [0, count), written to out[i]: the
-/// same verdict, bit for bit, at every SIMD level (the pairs' relative frames are formed over
-/// SIMD lanes, one pair per lane, with the scalar query's operations; GJK then runs per pair
-/// on them, without the witness points and normals that convex_intersect also reports).
+/// same verdict, bit for bit, at every SIMD level (GJK runs over SIMD lanes, one pair per
+/// lane, with the scalar query's operations; see the box-pair batches below).
 /// Invalid pairs get ConvexStatus::invalid_input (and gyro::last_error() a message).
 void convex_intersect_batch(const ConvexBoxPairs& pairs, std::size_t count, ConvexStatus* out,
                             const ConvexQueryOptions& options = {});
@@ -180,5 +179,23 @@ struct ConvexMass {
 /// Jacobi rotations (a fixed order, + - * / sqrt only: deterministic). Failures leave
 /// `out` unchanged: invalid_argument (an empty hull or one with volume <= 0).
 Status convex_hull_mass(const ConvexHull& hull, ConvexMass& out);
+
+// ---- box-pair batches: GJK over SIMD lanes (issue 8) ----
+//
+// convex_intersect_batch above and the two calls below run GJK itself over SIMD lanes, one
+// box pair per lane through the whole iteration loop (each lane performs the scalar loop's
+// operations, so the lanes leave every pair with the scalar query's simplex, bit for bit);
+// the results are then formed, and EPA run where needed, with the scalar query's code.
+// out[i] is bit-identical to the scalar call on pair i at every SIMD level and thread count.
+// Invalid pairs get ConvexStatus::invalid_input (and gyro::last_error() a message).
+
+/// convex_distance(box A_i, box B_i) for i in [0, count), written to out[i].
+void convex_distance_batch(const ConvexBoxPairs& pairs, std::size_t count, ConvexResult* out,
+                           const ConvexQueryOptions& options = {});
+/// convex_penetration(box A_i, box B_i) for i in [0, count), written to out[i].
+void convex_penetration_batch(const ConvexBoxPairs& pairs, std::size_t count, ConvexResult* out,
+                              const ConvexQueryOptions& options = {});
+
+// ---- end of the box-pair batches ----
 
 }  // namespace gyro

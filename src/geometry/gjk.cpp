@@ -20,6 +20,7 @@
 #include "gyro/runtime.hpp"
 
 #include <bit>
+#include <memory>
 
 namespace gyro {
 namespace detail {
@@ -441,14 +442,14 @@ ConvexResult finish(const ConvexPose& pa, ConvexStatus st, float distance, const
 
 enum class Mode { intersect, distance, penetration };
 
-ConvexResult query(const ConvexShape& a, const ConvexPose& pa, const ConvexShape& b, const ConvexPose& pb,
-                   const ConvexQueryOptions& opt, Mode mode) {
-  PairFrame f;
-  if (!make_frame(a, pa, b, pb, f)) return invalid();
+// The result from GJK's end state (shared by the scalar query and the batch calls, so both
+// give the same bits from the same state).
+ConvexResult conclude(const ConvexPose& pa, const PairFrame& f, const GjkOut& g, const ConvexQueryOptions& opt,
+                      Mode mode) {
+  const ConvexShape& a = *f.a;
+  const ConvexShape& b = *f.b;
   const float margins = margin_of(a) + margin_of(b);
   const float tol = opt.touch_tolerance * f.scale;
-  GjkOut g;
-  gjk(f, mode == Mode::intersect, margins + tol, opt.max_gjk_iterations, g);
   vec3 wa, wb;
   witnesses(g, wa, wb);
   if (!g.enclosed) {
@@ -480,13 +481,22 @@ ConvexResult query(const ConvexShape& a, const ConvexPose& pa, const ConvexShape
   return finish(pa, st, out, e.normal, sa, sb, g.iterations + e.iterations);
 }
 
-// convex_intersect's status from a valid frame of two boxes, without its witnesses (the
-// batch checks beforehand that they would be finite).
-ConvexStatus box_intersect_status(const PairFrame& f, const ConvexQueryOptions& opt) {
-  const float margins = margin_of(*f.a) + margin_of(*f.b);
+ConvexResult query(const ConvexShape& a, const ConvexPose& pa, const ConvexShape& b, const ConvexPose& pb,
+                   const ConvexQueryOptions& opt, Mode mode) {
+  PairFrame f;
+  if (!make_frame(a, pa, b, pb, f)) return invalid();
+  const float margins = margin_of(a) + margin_of(b);
   const float tol = opt.touch_tolerance * f.scale;
   GjkOut g;
-  gjk_typed<ConvexType::box, ConvexType::box>(f, true, margins + tol, opt.max_gjk_iterations, g);
+  gjk(f, mode == Mode::intersect, margins + tol, opt.max_gjk_iterations, g);
+  return conclude(pa, f, g, opt, mode);
+}
+
+// convex_intersect's status from GJK's end state for two boxes, without its witnesses (the
+// batch checks beforehand that they would be finite).
+ConvexStatus box_intersect_status(const PairFrame& f, const GjkOut& g, const ConvexQueryOptions& opt) {
+  const float margins = 0.0f;
+  const float tol = opt.touch_tolerance * f.scale;
   if (!g.enclosed) {
     if (g.early) return ConvexStatus::separated;
     if (g.limit) return ConvexStatus::iteration_limit;
@@ -498,6 +508,133 @@ ConvexStatus box_intersect_status(const PairFrame& f, const ConvexQueryOptions& 
   if (!e.converged) return ConvexStatus::iteration_limit;
   const float depth = e.depth + margins;
   return depth <= tol ? ConvexStatus::touching : ConvexStatus::intersecting;
+}
+
+// One pair of a box batch: its shapes and poses, and where the lanes handled it, the frame
+// and GJK's end state as the scalar loop leaves them.
+struct BoxBatchPair {
+  ConvexShape a, b;
+  ConvexPose pa, pb;
+  bool scalar = false;  // invalid or out of the lanes' range: run the scalar query
+  PairFrame f;
+  GjkOut g;
+};
+
+// Pair i (element k of the block) as the lanes left it.
+void load_pair(const ConvexBoxPairs& p, std::size_t i, const BoxGjkBlock& blk, std::size_t k, BoxBatchPair& q) {
+  q.a.type = q.b.type = ConvexType::box;
+  q.a.half_extents = {p.a_half[0][i], p.a_half[1][i], p.a_half[2][i]};
+  q.b.half_extents = {p.b_half[0][i], p.b_half[1][i], p.b_half[2][i]};
+  q.pa.position = {p.a_center[0][i], p.a_center[1][i], p.a_center[2][i]};
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) q.pa.rotation.m[r][c] = p.a_rot[3 * r + c][i];
+  q.scalar = blk.code[k] == BoxGjkBlock::kScalar;
+  if (q.scalar) {
+    q.pb.position = {p.b_center[0][i], p.b_center[1][i], p.b_center[2][i]};
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) q.pb.rotation.m[r][c] = p.b_rot[3 * r + c][i];
+    return;
+  }
+  PairFrame& f = q.f;
+  f.a = &q.a, f.b = &q.b;
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) f.rot_b.m[r][c] = blk.rot[3 * r + c][k];
+  f.pos_b = {blk.pos[0][k], blk.pos[1][k], blk.pos[2][k]};
+  f.core = true;
+  f.scale = blk.scale[k];
+  GjkOut& g = q.g;
+  g.n = int(blk.n[k]);
+  for (int s = 0; s < g.n; ++s) {
+    SupportPoint& sp = g.slot.p[s];
+    sp.a = {blk.a[s][0][k], blk.a[s][1][k], blk.a[s][2][k]};
+    sp.b = {blk.b[s][0][k], blk.b[s][1][k], blk.b[s][2][k]};
+    sp.w = sp.a - sp.b;  // the lanes kept a and b; w = a - b is how the loop formed it
+  }
+  for (int s = 0; s < 4; ++s) g.ord[s] = s, g.lambda[s] = blk.lambda[s][k];
+  g.v = {blk.v[0][k], blk.v[1][k], blk.v[2][k]};
+  g.dist = std::sqrt(blk.vv[k]);
+  const uint32_t fl = blk.flags[k];
+  g.enclosed = (fl & BoxGjkBlock::kEnclosed) != 0, g.full = (fl & BoxGjkBlock::kFull) != 0;
+  g.early = (fl & BoxGjkBlock::kEarly) != 0, g.limit = (fl & BoxGjkBlock::kLimit) != 0;
+  g.iterations = blk.iterations[k];
+}
+
+// Runs the lane GJK over the pairs, block by block, and calls on_block(begin, end, block)
+// after each block.
+template <class OnBlock>
+void box_batch(const ConvexBoxPairs& p, std::size_t count, const ConvexQueryOptions& opt, Mode mode,
+               OnBlock&& on_block) {
+  const auto block = std::make_unique<BoxGjkBlock>();
+  const auto work = std::make_unique<BoxGjkWork>();
+  BoxGjkParams prm;
+  prm.touch_tolerance = opt.touch_tolerance, prm.max_iterations = opt.max_gjk_iterations;
+  prm.boolean = mode == Mode::intersect, prm.penetration = mode == Mode::penetration;
+  box_gjk_fn* const kernel = GYRO_DISPATCH(box_gjk);
+  for (std::size_t base = 0; base < count; base += BoxGjkBlock::kMax) {
+    const std::size_t end = count - base < BoxGjkBlock::kMax ? count : base + BoxGjkBlock::kMax;
+    kernel(p, base, end, prm, *block, *work);
+    on_block(base, end, static_cast<const BoxGjkBlock&>(*block));
+  }
+}
+
+// The scalar level: one lane computing every branch of the subalgorithm costs more than it
+// saves, so there each pair runs the scalar loop (the same bits by construction).
+bool lanes_pay() { return simd_level_width(simd_level()) > 1; }
+
+void load_pair_scalar(const ConvexBoxPairs& p, std::size_t i, BoxBatchPair& q) {
+  q.a.type = q.b.type = ConvexType::box;
+  q.a.half_extents = {p.a_half[0][i], p.a_half[1][i], p.a_half[2][i]};
+  q.b.half_extents = {p.b_half[0][i], p.b_half[1][i], p.b_half[2][i]};
+  q.pa.position = {p.a_center[0][i], p.a_center[1][i], p.a_center[2][i]};
+  q.pb.position = {p.b_center[0][i], p.b_center[1][i], p.b_center[2][i]};
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) q.pa.rotation.m[r][c] = p.a_rot[3 * r + c][i], q.pb.rotation.m[r][c] = p.b_rot[3 * r + c][i];
+}
+
+// convex_intersect's status for a pair at the scalar level: without witnesses where they
+// are finite for sure (the lanes' range: rotation entries at most 2, far below overflow).
+ConvexStatus box_intersect_scalar(BoxBatchPair& q, const ConvexQueryOptions& opt) {
+  PairFrame& f = q.f;
+  bool ok = make_frame(q.a, q.pa, q.b, q.pb, f);
+  for (int r = 0; r < 3 && ok; ++r)
+    for (int c = 0; c < 3; ++c)
+      ok = ok && absf(q.pa.rotation.m[r][c]) <= 2.0f && absf(q.pb.rotation.m[r][c]) <= 2.0f;
+  const vec3& ca = q.pa.position;
+  ok = ok && f.scale * 64.0f + max(max(absf(ca.x), absf(ca.y)), absf(ca.z)) < 1e36f;
+  if (!ok) return convex_intersect(q.a, q.pa, q.b, q.pb, opt).status;
+  const float tol = opt.touch_tolerance * f.scale;
+  GjkOut g;  // fresh: the loop only ever sets its flags
+  gjk_typed<ConvexType::box, ConvexType::box>(f, true, 0.0f + tol, opt.max_gjk_iterations, g);
+  return box_intersect_status(f, g, opt);
+}
+
+// convex_distance or convex_penetration over a box batch. Pairs whose cores ended apart
+// come with their result formed in the lanes (conclude's first branch, same operations);
+// the others go through conclude (EPA) or the scalar query.
+void box_result_batch(const ConvexBoxPairs& p, std::size_t count, ConvexResult* out, const ConvexQueryOptions& opt,
+                      Mode mode) {
+  BoxBatchPair q;
+  if (!lanes_pay()) {
+    for (std::size_t i = 0; i < count; ++i) load_pair_scalar(p, i, q), out[i] = query(q.a, q.pa, q.b, q.pb, opt, mode);
+    return;
+  }
+  box_batch(p, count, opt, mode, [&](std::size_t base, std::size_t end, const BoxGjkBlock& blk) {
+    for (std::size_t i = base; i < end; ++i) {
+      const std::size_t k = i - base;
+      if (blk.code[k] == BoxGjkBlock::kDone && blk.done[k] == 1.0f) {
+        ConvexResult& r = out[i];
+        r.status = ConvexStatus(uint32_t(blk.r_status[k]));
+        r.distance = blk.r_distance[k];
+        r.normal = {blk.r_normal[0][k], blk.r_normal[1][k], blk.r_normal[2][k]};
+        r.point_a = {blk.r_point_a[0][k], blk.r_point_a[1][k], blk.r_point_a[2][k]};
+        r.point_b = {blk.r_point_b[0][k], blk.r_point_b[1][k], blk.r_point_b[2][k]};
+        r.iterations = blk.iterations[k];
+        continue;
+      }
+      load_pair(p, i, blk, k, q);
+      out[i] = q.scalar ? query(q.a, q.pa, q.b, q.pb, opt, mode) : conclude(q.pa, q.f, q.g, opt, mode);
+    }
+  });
 }
 
 }  // namespace
@@ -597,43 +734,47 @@ namespace gyro {
 
 void convex_intersect_batch(const ConvexBoxPairs& p, std::size_t count, ConvexStatus* out,
                             const ConvexQueryOptions& opt) {
-  BoxFrameBlock block;
-  box_frames_fn* const frames = GYRO_DISPATCH(box_frames);
-  // The first two GJK iterations in the lanes pay only with several lanes: the scalar level
-  // leaves them to the loop (same verdicts either way).
-  const bool early = opt.max_gjk_iterations >= 2 && simd_level_width(simd_level()) > 1;
-  for (std::size_t base = 0; base < count; base += BoxFrameBlock::kMax) {
-    const std::size_t end = count - base < BoxFrameBlock::kMax ? count : base + BoxFrameBlock::kMax;
-    frames(p, base, end, opt.touch_tolerance, early, block);
+  detail::BoxBatchPair q;
+  if (!detail::lanes_pay()) {
+    for (std::size_t i = 0; i < count; ++i) detail::load_pair_scalar(p, i, q), out[i] = detail::box_intersect_scalar(q, opt);
+    return;
+  }
+  detail::box_batch(p, count, opt, detail::Mode::intersect, [&](std::size_t base, std::size_t end, const BoxGjkBlock& blk) {
     for (std::size_t i = base; i < end; ++i) {
       const std::size_t k = i - base;
-      if (block.code[k] == BoxFrameBlock::kSeparatedEarly) {
-        out[i] = ConvexStatus::separated;
+      const uint32_t fl = blk.flags[k];
+      if (blk.code[k] == BoxGjkBlock::kDone && !(fl & BoxGjkBlock::kEnclosed)) {
+        // box_intersect_status's separated branch, without forming the pair (margins are 0).
+        if (fl & BoxGjkBlock::kEarly) {
+          out[i] = ConvexStatus::separated;
+        } else if (fl & BoxGjkBlock::kLimit) {
+          out[i] = ConvexStatus::iteration_limit;
+        } else {
+          const float tol = opt.touch_tolerance * blk.scale[k];
+          const float dist = std::sqrt(blk.vv[k]) - 0.0f;
+          out[i] = dist > tol ? ConvexStatus::separated
+                              : (dist >= -tol ? ConvexStatus::touching : ConvexStatus::intersecting);
+        }
         continue;
       }
-      ConvexShape a, b;
-      a.type = b.type = ConvexType::box;
-      a.half_extents = {p.a_half[0][i], p.a_half[1][i], p.a_half[2][i]};
-      b.half_extents = {p.b_half[0][i], p.b_half[1][i], p.b_half[2][i]};
-      if (block.code[k] == BoxFrameBlock::kScalar) {  // invalid, or outside the range the batch handles: the scalar query
-        ConvexPose pa, pb;
-        pa.position = {p.a_center[0][i], p.a_center[1][i], p.a_center[2][i]};
-        pb.position = {p.b_center[0][i], p.b_center[1][i], p.b_center[2][i]};
-        for (int r = 0; r < 3; ++r)
-          for (int c = 0; c < 3; ++c) pa.rotation.m[r][c] = p.a_rot[3 * r + c][i], pb.rotation.m[r][c] = p.b_rot[3 * r + c][i];
-        out[i] = convex_intersect(a, pa, b, pb, opt).status;
+      if (blk.code[k] == BoxGjkBlock::kDone && (fl & BoxGjkBlock::kFull)) {
+        out[i] = ConvexStatus::intersecting;
         continue;
       }
-      detail::PairFrame f;
-      f.a = &a, f.b = &b;
-      for (int r = 0; r < 3; ++r)
-        for (int c = 0; c < 3; ++c) f.rot_b.m[r][c] = block.rot[3 * r + c][k];
-      f.pos_b = {block.pos[0][k], block.pos[1][k], block.pos[2][k]};
-      f.core = true;
-      f.scale = block.scale[k];
-      out[i] = detail::box_intersect_status(f, opt);
+      detail::load_pair(p, i, blk, k, q);
+      out[i] = q.scalar ? convex_intersect(q.a, q.pa, q.b, q.pb, opt).status : detail::box_intersect_status(q.f, q.g, opt);
     }
-  }
+  });
+}
+
+void convex_distance_batch(const ConvexBoxPairs& p, std::size_t count, ConvexResult* out,
+                           const ConvexQueryOptions& opt) {
+  detail::box_result_batch(p, count, out, opt, detail::Mode::distance);
+}
+
+void convex_penetration_batch(const ConvexBoxPairs& p, std::size_t count, ConvexResult* out,
+                              const ConvexQueryOptions& opt) {
+  detail::box_result_batch(p, count, out, opt, detail::Mode::penetration);
 }
 
 }  // namespace gyro
