@@ -280,8 +280,16 @@ int clip_features(const Feature& ref, const vec3& ref_normal, const Feature& inc
   return m;
 }
 
-void single_point(const ConvexResult& r, uint32_t id, Manifold* out) {
-  out->normal = r.normal;
+// EPA's normal, or for coincident cores (no defined direction) the line of the centres,
+// else +y (as spheres do).
+vec3 pair_normal(const ConvexResult& r, const ConvexCollider& a, const ConvexCollider& b) {
+  if (dot(r.normal, r.normal) > 0.5f) return r.normal;
+  const vec3 d = b.pose.position - a.pose.position;
+  return d == vec3{} ? vec3{0.0f, 1.0f, 0.0f} : normalized(d);
+}
+
+void single_point(const ConvexResult& r, const vec3& normal, uint32_t id, Manifold* out) {
+  out->normal = normal;
   out->points[0].position = (r.point_a + r.point_b) * 0.5f;
   out->points[0].separation = r.distance;
   out->points[0].feature_id = id;
@@ -295,12 +303,7 @@ void collide_convex_shapes(const ConvexCollider& a, const ConvexCollider& b, flo
   const ConvexResult r = convex_penetration(a.shape, a.pose, b.shape, b.pose);
   if (r.status == ConvexStatus::invalid_input) return;
   if (!(r.distance < margin)) return;
-  vec3 n = r.normal;
-  if (!(dot(n, n) > 0.5f)) {
-    // Coincident cores: no defined direction. Push along the centres, else +y (as spheres do).
-    const vec3 d = b.pose.position - a.pose.position;
-    n = d == vec3{} ? vec3{0.0f, 1.0f, 0.0f} : normalized(d);
-  }
+  const vec3 n = pair_normal(r, a, b);
   Feature fa, fb;
   supporting_feature(a, n, &fa);
   supporting_feature(b, -n, &fb);
@@ -319,7 +322,7 @@ void collide_convex_shapes(const ConvexCollider& a, const ConvexCollider& b, flo
     Feature ref = fa;
     if (clip_features(ref, n, fb, margin, pair_id, true, out) > 0) return;
   }
-  single_point(r, pair_id | 1u << 10, out);
+  single_point(r, n, pair_id | 1u << 10, out);
 }
 
 void collide_convex_plane(const ConvexCollider& a, const Plane& b, float margin, Manifold* out) {
@@ -396,11 +399,7 @@ void collide_convex_incremental(const ConvexCollider& a, const ConvexCollider& b
   out->count = 0;
   const ConvexResult r = convex_penetration(a.shape, a.pose, b.shape, b.pose);
   if (r.status == ConvexStatus::invalid_input || !(r.distance < margin)) return;
-  vec3 n = r.normal;
-  if (!(dot(n, n) > 0.5f)) {
-    const vec3 d = b.pose.position - a.pose.position;
-    n = d == vec3{} ? vec3{0.0f, 1.0f, 0.0f} : normalized(d);
-  }
+  const vec3 n = pair_normal(r, a, b);
   struct Candidate {
     vec3 la, lb, mid;
     float sep;

@@ -1,6 +1,7 @@
 #include "dynamics/contacts.hpp"
 
 #include "core/parallel.hpp"
+#include "dynamics/body_bounds.hpp"
 #include "dynamics/narrowphase.hpp"
 #include "gyro/triangle_mesh.hpp"
 
@@ -72,8 +73,8 @@ void collide_convex(const BodyStore& s, uint32_t a, uint32_t b, float margin, Ma
   if (swap) flip(m);
 }
 
-// Manifolds of body `body` (sphere or box) against the triangles of mesh body `mesh`, computed
-// in the mesh's frame; normals from body to mesh. Returns how many were written (<= cap).
+// Manifolds of body `body` (any shape but planes and meshes) against the triangles of mesh
+// body `mesh`, computed in the mesh's frame; normals from body to mesh. Returns how many were written (<= cap).
 uint32_t collide_mesh(const BodyStore& s, uint32_t body, uint32_t mesh, float margin, ContactRecord* out, uint32_t cap) {
   const quat qm = s.orientation(mesh), qm_inv = conjugate(qm);
   const vec3 pm = s.position(mesh);
@@ -82,24 +83,11 @@ uint32_t collide_mesh(const BodyStore& s, uint32_t body, uint32_t mesh, float ma
   const bool sphere = s.shape[body] == uint32_t(BodyShape::sphere);
   const bool generic = needs_generic(s.shape[body]);
   const OBB box{p_local, {s.hx[body], s.hy[body], s.hz[body]}, to_mat3(q_local)};
-  ConvexCollider shape;
-  vec3 reach0;
-  if (generic) {
-    shape = collider_of(s, body, p_local, q_local);
-    if (s.shape[body] == uint32_t(BodyShape::hull)) {
-      const AABB& lb = s.hull[body]->local_bounds;
-      reach0 = aabb_half_extents(shape.pose.rotation, lb.half_extents) + abs(rotate(q_local, lb.center));
-    } else {
-      const vec3 axis = rotate(q_local, vec3{0.0f, 1.0f, 0.0f});
-      reach0 = abs(axis) * s.hy[body] + vec3{s.hx[body], s.hx[body], s.hx[body]};
-    }
-  } else {
-    reach0 = sphere ? vec3{s.radius[body], s.radius[body], s.radius[body]}
-                    : aabb_half_extents(box.orientation, box.half_extents);
-  }
-  const vec3 reach = reach0 + vec3{margin, margin, margin};
+  const ConvexCollider shape = generic ? collider_of(s, body, p_local, q_local) : ConvexCollider{};
+  const AABB bounds = shape_bounds(s, body, p_local, q_local);
+  const vec3 reach = bounds.half_extents + vec3{margin, margin, margin};
   uint32_t tris[kMaxMeshManifolds];
-  const std::size_t found = s.mesh[mesh]->triangles_overlapping(AABB{p_local, reach}, tris, kMaxMeshManifolds);
+  const std::size_t found = s.mesh[mesh]->triangles_overlapping(AABB{bounds.center, reach}, tris, kMaxMeshManifolds);
   const uint32_t n = uint32_t(std::min<std::size_t>(found, cap));
   uint32_t written = 0;
   for (uint32_t k = 0; k < n; ++k) {

@@ -275,6 +275,19 @@ Collider inflated(const Collider& c, float t) {
   return out;
 }
 
+namespace {
+// Rotations come from callers' quaternions and matrices: unit, orthogonal rows to 1e-3.
+Status check_rows_orthonormal(const mat3& m, const char* what) {
+  for (int r = 0; r < 3; ++r)
+    for (int q = r; q < 3; ++q) {
+      const vec3 a{m[r][0], m[r][1], m[r][2]}, b{m[q][0], m[q][1], m[q][2]};
+      if (!(std::abs(dot(a, b) - (r == q ? 1.0f : 0.0f)) <= 1e-3f))
+        return fail(Status::invalid_argument, "%s is not orthonormal (rows %d, %d)", what, r, q);
+    }
+  return Status::ok;
+}
+}  // namespace
+
 Status to_collider(const Sphere& sphere, Collider* out) {
   if (!gyro::is_finite(sphere.center) || !is_finite(sphere.radius)) return fail(Status::non_finite, "sphere collider is not finite");
   if (sphere.radius < 0.0f) return fail(Status::invalid_argument, "sphere collider radius %g is negative", double(sphere.radius));
@@ -301,15 +314,7 @@ Status to_collider(const OBB& box, Collider* out) {
   if (!finite) return fail(Status::non_finite, "OBB collider is not finite");
   if (box.half_extents.x < 0.0f || box.half_extents.y < 0.0f || box.half_extents.z < 0.0f)
     return fail(Status::invalid_argument, "OBB collider has a negative half extent");
-  for (int r = 0; r < 3; ++r) {
-    for (int q = r; q < 3; ++q) {
-      const vec3 a{box.orientation[r][0], box.orientation[r][1], box.orientation[r][2]};
-      const vec3 b{box.orientation[q][0], box.orientation[q][1], box.orientation[q][2]};
-      const float want = r == q ? 1.0f : 0.0f;
-      if (!(std::abs(dot(a, b) - want) <= 1e-3f))
-        return fail(Status::invalid_argument, "OBB collider orientation is not orthonormal (rows %d, %d)", r, q);
-    }
-  }
+  GYRO_TRY(check_rows_orthonormal(box.orientation, "OBB collider orientation"));
   Collider& c = *out;
   c = Collider{};
   c.kind = ColliderKind::obb, c.obb = box;
@@ -347,12 +352,7 @@ Status to_collider(const HullCollider& hull, Collider* out) {
     for (int k = 0; k < 3; ++k) finite = finite && is_finite(hull.rotation[r][k]);
   if (!finite) return fail(Status::non_finite, "hull collider pose or margin is not finite");
   if (hull.margin < 0.0f) return fail(Status::invalid_argument, "hull collider margin %g is negative", double(hull.margin));
-  for (int r = 0; r < 3; ++r)
-    for (int q = r; q < 3; ++q) {
-      const vec3 a = row(hull.rotation, r), b = row(hull.rotation, q);
-      if (!(std::abs(dot(a, b) - (r == q ? 1.0f : 0.0f)) <= 1e-3f))
-        return fail(Status::invalid_argument, "hull collider rotation is not orthonormal (rows %d, %d)", r, q);
-    }
+  GYRO_TRY(check_rows_orthonormal(hull.rotation, "hull collider rotation"));
   Collider& c = *out;
   c = Collider{};
   c.kind = ColliderKind::hull, c.hull = hull;

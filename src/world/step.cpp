@@ -3,6 +3,7 @@
 // in fixed chunks that each write their own outputs; contacts are ordered by ids.
 #include "core/parallel.hpp"
 #include "core/validate.hpp"
+#include "dynamics/body_bounds.hpp"
 #include "dynamics/mass.hpp"
 #include "gyro/particles.hpp"
 #include "gyro/triangle_mesh.hpp"
@@ -21,28 +22,6 @@ using Clock = std::chrono::steady_clock;
 double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
 
 constexpr std::size_t kBodyChunk = 2048;  // integration is ~20 ns a body: smaller chunks cost more than they save
-
-// World-space AABB half extents of a body's shape.
-vec3 shape_reach(const BodyStore& s, uint32_t i) {
-  switch (BodyShape(s.shape[i])) {
-    case BodyShape::sphere: return {s.radius[i], s.radius[i], s.radius[i]};
-    case BodyShape::capsule: {
-      const vec3 axis = rotate(s.orientation(i), vec3{0.0f, 1.0f, 0.0f});
-      const float r = s.hx[i], h = s.hy[i];
-      return abs(axis) * h + vec3{r, r, r};
-    }
-    case BodyShape::mesh: return aabb_half_extents(to_mat3(s.orientation(i)), s.mesh[i]->bounds().half_extents);
-    case BodyShape::hull: return aabb_half_extents(to_mat3(s.orientation(i)), s.hull[i]->local_bounds.half_extents);
-    default: return aabb_half_extents(to_mat3(s.orientation(i)), vec3{s.hx[i], s.hy[i], s.hz[i]});
-  }
-}
-
-vec3 shape_center(const BodyStore& s, uint32_t i) {
-  if (s.shape[i] == uint32_t(BodyShape::mesh)) return rotate(s.orientation(i), s.mesh[i]->bounds().center) + s.position(i);
-  if (s.shape[i] == uint32_t(BodyShape::hull))
-    return rotate(s.orientation(i), s.hull[i]->local_bounds.center) + s.position(i);
-  return s.position(i);
-}
 
 }  // namespace
 
@@ -71,8 +50,9 @@ void World::Impl::find_pairs(float dt) {
       planes.push_back(i);
       continue;
     }
-    vec3 reach = shape_reach(s, i);
-    const vec3 c = shape_center(s, i);
+    const AABB box = detail::shape_bounds(s, i);
+    vec3 reach = box.half_extents;
+    const vec3 c = box.center;
     float grow = spec;
     if (active[i] && def.enable_continuous)
       grow = grow + (length(s.linear_velocity(i)) + length(s.angular_velocity(i)) * s.radius[i]) * dt;

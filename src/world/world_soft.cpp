@@ -2,6 +2,7 @@
 // every rigid body near them as a collider at its current pose (one-way coupling).
 #include "core/error.hpp"
 #include "core/validate.hpp"
+#include "dynamics/body_bounds.hpp"
 #include "gyro/soft_body.hpp"
 #include "gyro/triangle_mesh.hpp"
 #include "world/world_impl.hpp"
@@ -59,57 +60,38 @@ void World::Impl::step_soft_bodies(float dt) {
     for (uint32_t i = 0; i < n; ++i) {
       const vec3 p{s.px[i], s.py[i], s.pz[i]};
       const quat q{s.qx[i], s.qy[i], s.qz[i], s.qw[i]};
+      const auto shape = static_cast<BodyShape>(s.shape[i]);
       detail::Collider c;
-      vec3 half, centre = p;
-      switch (static_cast<BodyShape>(s.shape[i])) {
-        case BodyShape::sphere:
-          c.kind = detail::ColliderKind::sphere, c.sphere = {p, s.radius[i]};
-          half = {s.radius[i], s.radius[i], s.radius[i]};
-          break;
+      if (shape == BodyShape::plane) {
+        const vec3 normal = rotate(q, vec3{0.0f, 1.0f, 0.0f});
+        c.kind = detail::ColliderKind::plane, c.plane = {normal, dot(normal, p)};
+        soft_shapes.push_back(c);
+        continue;
+      }
+      if (shape == BodyShape::mesh && (!s.mesh[i] || s.mesh[i]->empty())) continue;
+      const AABB box = detail::shape_bounds(s, i, p, q);
+      bool meets = true;
+      for (int k = 0; k < 3; ++k)
+        meets = meets && box.center[k] - box.half_extents[k] <= hi[k] && box.center[k] + box.half_extents[k] >= lo[k];
+      if (!meets) continue;
+      switch (shape) {
+        case BodyShape::sphere: c.kind = detail::ColliderKind::sphere, c.sphere = {p, s.radius[i]}; break;
         case BodyShape::box:
           c.kind = detail::ColliderKind::obb;
           c.obb.center = p, c.obb.half_extents = {s.hx[i], s.hy[i], s.hz[i]}, c.obb.orientation = to_mat3(q);
-          half = aabb_half_extents(c.obb.orientation, c.obb.half_extents);
           break;
-        case BodyShape::plane: {
-          const vec3 normal = rotate(q, vec3{0.0f, 1.0f, 0.0f});
-          c.kind = detail::ColliderKind::plane, c.plane = {normal, dot(normal, p)};
-          soft_shapes.push_back(c);
-          continue;
-        }
-        case BodyShape::mesh: {
-          const TriangleMesh* mesh = s.mesh[i];
-          if (!mesh || mesh->empty()) continue;
-          const AABB local = mesh->bounds();
-          const mat3 r = to_mat3(q);
-          const vec3 centre = p + rotate(q, local.center);
-          const vec3 e = aabb_half_extents(r, local.half_extents);
-          bool meets = true;
-          for (int k = 0; k < 3; ++k) meets = meets && centre[k] - e[k] <= hi[k] && centre[k] + e[k] >= lo[k];
-          if (meets) soft_meshes.push_back({mesh, p, q});
-          continue;
-        }
         case BodyShape::capsule: {
-          const vec3 axis = rotate(q, vec3{0.0f, 1.0f, 0.0f});
-          const float r = s.hx[i], hh = s.hy[i];
-          c.kind = detail::ColliderKind::capsule;
-          c.capsule = {p - axis * hh, p + axis * hh, r};
-          half = abs(axis) * hh + vec3{r, r, r};
+          const vec3 axis = rotate(q, vec3{0.0f, 1.0f, 0.0f}) * s.hy[i];
+          c.kind = detail::ColliderKind::capsule, c.capsule = {p - axis, p + axis, s.hx[i]};
           break;
         }
-        case BodyShape::hull: {
-          const detail::BodyHull& bh = *s.hull[i];
-          c.kind = detail::ColliderKind::hull;
-          c.hull = {&bh.hull, p, to_mat3(q), 0.0f};
-          centre = p + rotate(q, bh.local_bounds.center);
-          half = aabb_half_extents(c.hull.rotation, bh.local_bounds.half_extents);
+        case BodyShape::hull:
+          c.kind = detail::ColliderKind::hull, c.hull = {&s.hull[i]->hull, p, to_mat3(q), 0.0f};
           break;
-        }
-        default: continue;
+        case BodyShape::mesh: soft_meshes.push_back({s.mesh[i], p, q}); continue;
+        case BodyShape::plane: continue;
       }
-      bool meets = true;
-      for (int k = 0; k < 3; ++k) meets = meets && centre[k] - half[k] <= hi[k] && centre[k] + half[k] >= lo[k];
-      if (meets) soft_shapes.push_back(c);
+      soft_shapes.push_back(c);
     }
     detail::SoftAccess::step_with(*body, dt, soft_shapes, soft_meshes);
   }

@@ -15,18 +15,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-static int failures = 0;
-#define CHECK(cond)                                                                              \
-  do {                                                                                           \
-    if (!(cond)) {                                                                               \
-      fprintf(stderr, "%s:%d: CHECK failed: %s (last error: %s)\n", __FILE__, __LINE__, #cond,   \
-              gyro_last_error());                                                                \
-      ++failures;                                                                                \
-    }                                                                                            \
-  } while (0)
+#include "check.h"
 
-/* The plain-data layout every binding relies on (C99 has no _Static_assert). */
-#define STATIC_ASSERT(cond, name) typedef char static_assert_##name[(cond) ? 1 : -1]
 STATIC_ASSERT(sizeof(gyro_convex_type) == 4 && sizeof(gyro_convex_status) == 4, enums);
 STATIC_ASSERT(sizeof(gyro_convex_hull_info) == 16, hull_info);
 STATIC_ASSERT(sizeof(gyro_convex_plane) == 16 && offsetof(gyro_convex_plane, d) == 12, plane);

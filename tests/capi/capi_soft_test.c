@@ -12,18 +12,8 @@
 #include <stdio.h>
 #include <string.h>
 
-static int failures = 0;
-#define CHECK(cond)                                                              \
-  do {                                                                           \
-    if (!(cond)) {                                                               \
-      fprintf(stderr, "%s:%d: CHECK failed: %s (last error: %s)\n", __FILE__, __LINE__, #cond, \
-              gyro_last_error());                                                \
-      ++failures;                                                                \
-    }                                                                            \
-  } while (0)
+#include "check.h"
 
-/* The plain-data layout every binding relies on (C99 has no _Static_assert). */
-#define STATIC_ASSERT(cond, name) typedef char static_assert_##name[(cond) ? 1 : -1]
 STATIC_ASSERT(sizeof(gyro_soft_body_id) == 8, soft_body_id);
 STATIC_ASSERT(sizeof(gyro_soft_model) == 4 && sizeof(gyro_spring_family) == 4 &&
                   sizeof(gyro_collision_response) == 4 && sizeof(gyro_step_stage) == 4,

@@ -10,18 +10,8 @@
 #include <stdio.h>
 #include <string.h>
 
-static int failures = 0;
-#define CHECK(cond)                                                              \
-  do {                                                                           \
-    if (!(cond)) {                                                               \
-      fprintf(stderr, "%s:%d: CHECK failed: %s\n", __FILE__, __LINE__, #cond);  \
-      ++failures;                                                                \
-    }                                                                            \
-  } while (0)
+#include "check.h"
 
-/* The plain-data layout every binding relies on, checked at compile time. C99 has no
- * _Static_assert (C11; -pedantic rejects it), so a false condition gives an array of size -1. */
-#define STATIC_ASSERT(cond, name) typedef char static_assert_##name[(cond) ? 1 : -1]
 STATIC_ASSERT(sizeof(gyro_vec3) == 12, vec3);
 STATIC_ASSERT(sizeof(gyro_quat) == 16, quat);
 STATIC_ASSERT(sizeof(gyro_body_id) == 8, body_id);

@@ -16,6 +16,9 @@ namespace gyro {
 namespace {
 
 using test::add_ground;
+using test::add_plane;
+using test::max_drift;
+using test::positions;
 using test::make_world;
 using test::position_of;
 
@@ -68,15 +71,6 @@ BodyId add_capsule(World& w, float r, float hh, vec3 p, quat q = {}) {
   BodyId id;
   EXPECT_EQ(w.create_body(d, &id), Status::ok);
   return id;
-}
-
-double max_drift(const World& w, const std::vector<BodyId>& ids, const std::vector<vec3>& start) {
-  double worst = 0.0;
-  for (std::size_t i = 0; i < ids.size(); ++i) {
-    const vec3 d = position_of(w, ids[i]) - start[i];
-    worst = std::max(worst, double(std::sqrt(dot(d, d))));
-  }
-  return worst;
 }
 
 // The lowest point of a hull body in the world.
@@ -168,11 +162,7 @@ TEST(ConvexBodies, CapsulesRestAtTheirHeightOnPlaneBoxAndHull) {
   for (int ground = 0; ground < 3; ++ground) {
     auto w = make_world();
     if (ground == 0) {
-      BodyDef g;
-      g.type = BodyType::static_body;
-      g.shape.type = BodyShape::plane;
-      BodyId gid;
-      ASSERT_EQ(w->create_body(g, &gid), Status::ok);
+      ASSERT_FALSE(add_plane(*w).is_null());
     } else if (ground == 1) {
       add_ground(*w);
     } else {
@@ -202,11 +192,7 @@ TEST(ConvexBodies, CapsulesRestAtTheirHeightOnPlaneBoxAndHull) {
 
 TEST(ConvexBodies, HullsRestOnPlaneAndOnEachOther) {
   auto w = make_world();
-  BodyDef g;
-  g.type = BodyType::static_body;
-  g.shape.type = BodyShape::plane;
-  BodyId gid;
-  ASSERT_EQ(w->create_body(g, &gid), Status::ok);
+  ASSERT_FALSE(add_plane(*w).is_null());
   const ConvexHull prism = prism_hull(6, 0.5f, 0.25f);
   const BodyId a = add_hull(*w, prism, {0.0f, 0.5f, 0.0f});
   const BodyId b = add_hull(*w, prism, {0.05f, 1.2f, 0.0f}, from_axis_angle({0.0f, 1.0f, 0.0f}, 0.3f));
@@ -229,8 +215,7 @@ double hull_stack_drift(ConvexManifold model, int levels, double* tilt_out, bool
   std::vector<BodyId> ids;
   for (int i = 0; i < levels; ++i)
     ids.push_back(boxes ? test::add_box(*w, {0.0f, 0.5f + float(i), 0.0f}) : add_hull(*w, cube, {0.0f, 0.5f + float(i), 0.0f}));
-  std::vector<vec3> start;
-  for (BodyId id : ids) start.push_back(position_of(*w, id));
+  const std::vector<vec3> start = positions(*w, ids);
   for (int i = 0; i < 600; ++i) w->step(kDt);
   double tilt = 0.0;
   for (BodyId id : ids) {
@@ -270,8 +255,7 @@ TEST(ConvexBodies, PrismStackStandsForTenSeconds) {
   std::vector<BodyId> ids;
   for (int i = 0; i < 8; ++i)
     ids.push_back(add_hull(*w, prism, {0.0f, 0.2f + 0.4f * float(i), 0.0f}, from_axis_angle({0, 1, 0}, 0.2f * float(i))));
-  std::vector<vec3> start;
-  for (BodyId id : ids) start.push_back(position_of(*w, id));
+  const std::vector<vec3> start = positions(*w, ids);
   for (int i = 0; i < 600; ++i) w->step(kDt);
   const double drift = max_drift(*w, ids, start);
   std::printf("8 heptagonal prisms, 10 s: drift %.5f m\n", drift);

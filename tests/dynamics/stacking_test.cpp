@@ -14,7 +14,9 @@ namespace {
 using test::add_box;
 using test::add_ground;
 using test::make_world;
+using test::max_drift;
 using test::position_of;
+using test::positions;
 
 constexpr float kDt = 1.0f / 60.0f;
 
@@ -102,18 +104,6 @@ TEST(Contacts, FrictionOnAnInclineSticksBelowTheAngleAndSlidesAbove) {
                 100.0 * (a - expected) / expected);
     EXPECT_NEAR(a, expected, 0.02 * expected) << "theta " << theta;
   }
-}
-
-double max_drift(const World& w, const std::vector<BodyId>& ids, const std::vector<vec3>& start) {
-  double m = 0.0;
-  for (std::size_t i = 0; i < ids.size(); ++i) m = std::max(m, double(length(position_of(w, ids[i]) - start[i])));
-  return m;
-}
-
-std::vector<vec3> positions(const World& w, const std::vector<BodyId>& ids) {
-  std::vector<vec3> p;
-  for (BodyId id : ids) p.push_back(position_of(w, id));
-  return p;
 }
 
 TEST(Contacts, TenBoxStackStaysWithinOneCentimetreForTenSeconds) {

@@ -56,4 +56,29 @@ inline vec3 position_of(const World& w, BodyId id) {
   return p;
 }
 
+inline std::vector<vec3> positions(const World& w, const std::vector<BodyId>& ids) {
+  std::vector<vec3> p;
+  for (BodyId id : ids) p.push_back(position_of(w, id));
+  return p;
+}
+
+/// The largest distance any of the bodies moved from `start` (positions(w, ids) earlier).
+inline double max_drift(const World& w, const std::vector<BodyId>& ids, const std::vector<vec3>& start) {
+  double m = 0.0;
+  for (std::size_t i = 0; i < ids.size(); ++i) {
+    const double d = double(length(position_of(w, ids[i]) - start[i]));
+    m = d > m ? d : m;
+  }
+  return m;
+}
+
+/// A static ground plane y = 0 (normal +y).
+inline BodyId add_plane(World& w) {
+  BodyDef d;
+  d.type = BodyType::static_body;
+  d.shape.type = BodyShape::plane;
+  BodyId id;
+  return w.create_body(d, &id) == Status::ok ? id : BodyId{};
+}
+
 }  // namespace gyro::test

@@ -393,6 +393,19 @@ uint64_t scene_camera_frustum() {
 // Rigid bodies in every configuration a step handles: a plane, a static box, a static
 // triangle-mesh ramp, a small pyramid, spheres that bounce, a spinning kinematic paddle, a
 // body destroyed mid-run, sleeping, and each contact model. Hashes the world every 10 steps.
+// A ground plane and a static mesh ramp beside the origin: the floor of the world scenes.
+bool add_ground_and_ramp(World& w, const TriangleMesh& ramp) {
+  BodyId id;
+  BodyDef d;
+  d.type = BodyType::static_body;
+  d.shape.type = BodyShape::plane;
+  if (w.create_body(d, &id) != Status::ok) return false;
+  d.shape.type = BodyShape::mesh;
+  d.shape.mesh = &ramp;
+  d.position = {4.0f, 0.01f, -3.0f};
+  return w.create_body(d, &id) == Status::ok;
+}
+
 uint64_t scene_world_pile() {
   detail::StateHasher h;
   static const TriangleMesh ramp = [] {
@@ -407,16 +420,9 @@ uint64_t scene_world_pile() {
     if (model != ContactModel::soft_step) def.velocity_iterations = 8;
     std::unique_ptr<World> w;
     if (World::create(def, &w) != Status::ok) return 0;
+    if (!add_ground_and_ramp(*w, ramp)) return 0;
     BodyId id;
     BodyDef d;
-    d.type = BodyType::static_body;
-    d.shape.type = BodyShape::plane;
-    if (w->create_body(d, &id) != Status::ok) return 0;
-    d.shape.type = BodyShape::mesh;
-    d.shape.mesh = &ramp;
-    d.position = {4.0f, 0.01f, -3.0f};
-    if (w->create_body(d, &id) != Status::ok) return 0;
-    d = BodyDef{};
     d.type = BodyType::kinematic;
     d.shape.half_extents = {2.0f, 0.1f, 0.3f};
     d.position = {-4.0f, 0.6f, 0.0f};
@@ -576,15 +582,8 @@ uint64_t scene_convex_bodies() {
     def.convex_manifold = model;
     std::unique_ptr<World> w;
     if (World::create(def, &w) != Status::ok) return 0;
+    if (!add_ground_and_ramp(*w, ramp)) return 0;
     BodyId id;
-    BodyDef d;
-    d.type = BodyType::static_body;
-    d.shape.type = BodyShape::plane;
-    if (w->create_body(d, &id) != Status::ok) return 0;
-    d.shape.type = BodyShape::mesh;
-    d.shape.mesh = &ramp;
-    d.position = {4.0f, 0.01f, -3.0f};
-    if (w->create_body(d, &id) != Status::ok) return 0;
     std::vector<BodyId> bodies;
     SplitMix64 r(99);
     for (int k = 0; k < 24; ++k) {
