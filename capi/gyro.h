@@ -34,7 +34,7 @@ extern "C" {
 
 /** ABI version this header describes: (major << 16) | minor. A library with the same
  *  major and a minor >= the header's is compatible. */
-#define GYRO_ABI_VERSION ((1u << 16) | 4u)
+#define GYRO_ABI_VERSION ((1u << 16) | 5u)
 
 /** The ABI version of the linked library; compare with GYRO_ABI_VERSION. */
 GYRO_API uint32_t gyro_abi_version(void);
@@ -54,7 +54,9 @@ enum {
   GYRO_FEATURE_SPATIAL = 1u << 11,      /**< meshes, BVH, OBJ reader, camera, frustum culling */
   GYRO_FEATURE_DYNAMICS = 1u << 12,     /**< rigid bodies, contacts, the solver and the world (ABI 1.2) */
   GYRO_FEATURE_SOFT_BODIES = 1u << 13,  /**< springs, cloth, soft bodies and particle joints (ABI 1.3) */
-  GYRO_FEATURE_CONVEX = 1u << 14        /**< convex hulls, GJK/EPA queries on pairs, capsule and hull bodies (ABI 1.4) */
+  GYRO_FEATURE_CONVEX = 1u << 14,       /**< convex hulls, GJK/EPA queries on pairs, capsule and hull bodies (ABI 1.4) */
+  GYRO_FEATURE_SNAPSHOT = 1u << 15,     /**< world snapshot and restore (ABI 1.5) */
+  GYRO_FEATURE_REPLAY = 1u << 16        /**< recording a world's calls and replaying them (ABI 1.5) */
 };
 GYRO_API uint32_t gyro_features(void);
 
@@ -70,7 +72,8 @@ enum {
   GYRO_STATUS_UNSUPPORTED = 5,      /**< the build or the CPU lacks the feature */
   GYRO_STATUS_OUT_OF_MEMORY = 6,
   GYRO_STATUS_STALE_ID = 7,         /**< the id names an object that no longer exists */
-  GYRO_STATUS_INTERNAL = 8          /**< a bug in gyro */
+  GYRO_STATUS_INTERNAL = 8,         /**< a bug in gyro */
+  GYRO_STATUS_CORRUPT_DATA = 9      /**< a snapshot or recording is truncated, corrupted or of another version (ABI 1.5) */
 };
 
 /** The detail of this thread's last failed call ("" if none). Valid until its next failure. */
@@ -1104,6 +1107,69 @@ GYRO_API gyro_status gyro_convex_distance_pairs(const gyro_convex_shape* a, cons
 GYRO_API gyro_status gyro_convex_penetration_pairs(const gyro_convex_shape* a, const gyro_convex_pose* pa,
                                                    const gyro_convex_shape* b, const gyro_convex_pose* pb,
                                                    int32_t count, gyro_convex_result* out);
+
+/* ------------------------------------------------------------------ snapshot and restore (ABI 1.5)
+ *
+ * A snapshot is the world's whole state as bytes: settings, bodies (hulls and meshes
+ * included, so a snapshot is self-contained), the id allocators, the persistent contacts
+ * with their warm-start impulses, sleeping islands, particles and soft bodies. A world
+ * restored from it steps on bit-identically to the world it was taken from (same hash after
+ * every step). The format is versioned and checksummed, little-endian, and the same on every
+ * platform. Rollback networking: snapshot every frame, restore and re-simulate on a late input. */
+
+/** Bytes gyro_world_snapshot needs for the world as it is now. */
+GYRO_API gyro_status gyro_world_snapshot_size(const gyro_world* world, uint64_t* out);
+/** Writes the snapshot into buffer (capacity bytes) and its size to *out_size. Errors (nothing
+ *  written): NULL_ARGUMENT, INVALID_COUNT (capacity below gyro_world_snapshot_size). */
+GYRO_API gyro_status gyro_world_snapshot(const gyro_world* world, void* buffer, uint64_t capacity,
+                                         uint64_t* out_size);
+/** Replaces the world's whole state with the snapshot's (its settings included). Mesh bodies
+ *  reuse a mesh the world already holds when the geometry is identical, else the world keeps
+ *  its own copy. Errors (the world unchanged): NULL_ARGUMENT, CORRUPT_DATA (truncated, bad
+ *  checksum, another format version, inconsistent contents), OUT_OF_MEMORY. */
+GYRO_API gyro_status gyro_world_restore(gyro_world* world, const void* buffer, uint64_t size);
+/** A new world holding the snapshot's state. Errors (*out untouched): as gyro_world_restore. */
+GYRO_API gyro_status gyro_world_create_from_snapshot(const void* buffer, uint64_t size, gyro_world** out);
+
+/* ------------------------------------------------------------------ record and replay (ABI 1.5) */
+/* A recording holds the world's snapshot when recording began, then every mutating call made
+ * on that world through this ABI in order (bodies, forces, impulses, velocities, transforms,
+ * sleep, soft bodies, steps; meshes and hulls a call names are stored with it), and the world
+ * hash after every step. Replaying rebuilds the world from the snapshot, makes the calls again
+ * and compares the hash after every step: the first step that differs is reported. Golden
+ * recordings in the tests catch any change that alters results. */
+
+/** Starts recording the world's calls (a snapshot of the world now is the recording's start).
+ *  Errors: NULL_ARGUMENT, INVALID_ARGUMENT (already recording), OUT_OF_MEMORY. */
+GYRO_API gyro_status gyro_world_record_begin(gyro_world* world);
+/** The recording so far: its size in bytes, and a copy (capacity below the size:
+ *  INVALID_COUNT, nothing written). Errors: NULL_ARGUMENT, INVALID_ARGUMENT (not recording). */
+GYRO_API gyro_status gyro_world_record_size(const gyro_world* world, uint64_t* out);
+GYRO_API gyro_status gyro_world_record_copy(const gyro_world* world, void* buffer, uint64_t capacity,
+                                            uint64_t* out_size);
+/** Writes the recording so far to a file. Errors: as above, INVALID_ARGUMENT (cannot write). */
+GYRO_API gyro_status gyro_world_record_save(const gyro_world* world, const char* path);
+/** Stops recording and frees the recording. Errors: NULL_ARGUMENT, INVALID_ARGUMENT (not recording). */
+GYRO_API gyro_status gyro_world_record_end(gyro_world* world);
+
+/** What a replay found. */
+typedef struct gyro_replay_report {
+  uint32_t struct_size;          /**< sizeof(gyro_replay_report) */
+  uint32_t diverged;             /**< 1 if a step's hash differed from the recorded one */
+  int64_t steps;                 /**< steps replayed */
+  int64_t calls;                 /**< calls replayed (steps included) */
+  int64_t first_divergent_step;  /**< 0-based; -1 if none */
+  uint64_t expected_hash;        /**< the recorded and the replayed hash at that step (0 if none) */
+  uint64_t actual_hash;
+  uint64_t final_hash;           /**< the replayed world's hash at the end */
+} gyro_replay_report;
+
+/** Replays a recording held in memory; out->struct_size must be set. A divergence is a result
+ *  (GYRO_OK, diverged = 1), not an error. Errors: NULL_ARGUMENT, INVALID_ARGUMENT (struct_size),
+ *  CORRUPT_DATA (truncated, bad checksum, unknown call, another version). */
+GYRO_API gyro_status gyro_replay(const void* data, uint64_t size, gyro_replay_report* out);
+/** Replays a recording file (see gyro_world_record_save). */
+GYRO_API gyro_status gyro_replay_file(const char* path, gyro_replay_report* out);
 
 #ifdef __cplusplus
 }

@@ -78,7 +78,7 @@ GYRO_API uint32_t gyro_features(void) {
 
 GYRO_API const char* gyro_last_error(void) { return gyro::last_error(); }
 GYRO_API const char* gyro_status_name(gyro_status status) {
-  if (status < 0 || status > GYRO_STATUS_INTERNAL) return "unknown_status";
+  if (status < 0 || status > GYRO_STATUS_CORRUPT_DATA) return "unknown_status";
   return gyro::status_name(static_cast<Status>(status));
 }
 

@@ -16,6 +16,7 @@ enum class Status : int32_t {
   out_of_memory = 6,
   stale_id = 7,          ///< an id names an object that no longer exists
   internal = 8,          ///< a bug in gyro: please report it
+  corrupt_data = 9,      ///< a snapshot or recording is truncated, corrupted or of another version
 };
 
 /// A short constant name for a status ("ok", "null_argument", ...).

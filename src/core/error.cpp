@@ -20,6 +20,7 @@ const char* status_name(Status s) {
     case Status::out_of_memory: return "out_of_memory";
     case Status::stale_id: return "stale_id";
     case Status::internal: return "internal";
+    case Status::corrupt_data: return "corrupt_data";
   }
   return "unknown_status";
 }

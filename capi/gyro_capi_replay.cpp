@@ -1,0 +1,1 @@
+// placeholder: record and replay (in progress)

@@ -1,0 +1,1 @@
+// placeholder: World::snapshot / World::restore (in progress)
