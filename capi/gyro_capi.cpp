@@ -73,6 +73,9 @@ GYRO_API uint32_t gyro_features(void) {
   // brings geometry; hull and capsule bodies need the world as well.
   f |= GYRO_FEATURE_CONVEX;
 #endif
+#if defined(GYRO_HAS_DYNAMICS)
+  f |= GYRO_FEATURE_SNAPSHOT;
+#endif
   return f;
 }
 

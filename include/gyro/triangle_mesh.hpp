@@ -57,6 +57,8 @@ class TriangleMesh {
 
   bool empty() const { return impl_ == nullptr; }
   std::size_t triangle_count() const;
+  /// The vertices and indices it was created from (empty for a mesh never created).
+  const MeshData& data() const;
   /// Corners of triangle i in input order.
   Triangle triangle(std::size_t i) const;
   AABB bounds() const;

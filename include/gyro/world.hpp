@@ -216,6 +216,8 @@ class World {
   /// caller built it is at body_transform * (offset, rotation). Identity for other shapes.
   /// Render a hull body with position + rotate(q, offset) and q * rotation.
   Status get_shape_frame(BodyId id, vec3* offset, quat* rotation) const;
+  /// The mesh of a mesh body (null for other shapes).
+  Status get_mesh(BodyId id, const TriangleMesh** mesh) const;
 
   /// Forces and torques last for the next step only (cleared after it).
   Status apply_force(BodyId id, const vec3& force, const vec3& world_point);
@@ -233,6 +235,23 @@ class World {
 
   /// The 64-bit witness of the whole state (see the conventions above).
   uint64_t hash() const;
+
+  /// Snapshots: the whole state as bytes (settings, bodies with their hull and mesh
+  /// geometry, the id allocators, the contacts with their warm-start impulses, particles and
+  /// soft bodies), versioned, checksummed, little-endian. A world restored from a snapshot
+  /// steps on bit-identically to the one it was taken from (equal hash() after every step).
+  /// Not kept: the last step's timings, stats and contact events (the next step's events
+  /// are measured against the restored contacts, as they would have been).
+  std::size_t snapshot_size() const;
+  /// Writes the snapshot (invalid_count, nothing written, when capacity < snapshot_size()).
+  Status snapshot(void* buffer, std::size_t capacity, std::size_t* size) const;
+  /// Replaces the whole state with the snapshot's, its settings included (threads stays this
+  /// world's: it changes no result). A mesh body reuses a mesh this world references when its
+  /// geometry is bit-identical (the caller keeps such a mesh alive while a body uses it), else
+  /// the world keeps its own copy. corrupt_data (truncated, bad checksum, another format
+  /// version, inconsistent contents) or out_of_memory leave the world unchanged.
+  Status restore(const void* data, std::size_t size);
+  static Status create_from_snapshot(const void* data, std::size_t size, std::unique_ptr<World>* out);
 
   BodyView bodies() const;
   const StepTimings& timings() const;
@@ -264,6 +283,8 @@ class World {
 
  private:
   World();
+  /// Builds a world from a snapshot; `current` (may be null) lends meshes with identical geometry.
+  static Status from_snapshot(const void* data, std::size_t size, const Impl* current, std::unique_ptr<World>* out);
   std::unique_ptr<Impl> impl_;
 };
 

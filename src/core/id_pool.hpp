@@ -9,6 +9,8 @@
 // All-zero is the null id: generations start at 1 and skip 0 when they wrap.
 #pragma once
 
+#include "core/byte_stream.hpp"
+
 #include <cstdint>
 #include <vector>
 
@@ -83,6 +85,44 @@ class IdPool {
     for (const Entry& e : entries_) h.add_u64((uint64_t{e.generation} << 32) | e.slot);
     h.add_u64(free_.size());
     for (uint32_t f : free_) h.add_u64(f);
+  }
+
+  /// The whole allocator as snapshot bytes (entries, dense order, free order).
+  void write(ByteWriter& w) const {
+    w.u64(entries_.size());
+    for (const Entry& e : entries_) w.u32(e.generation), w.u32(e.slot);
+    w.array(dense_);
+    w.array(free_);
+  }
+  /// Reads an allocator and checks it whole: every entry is live (its slot names a dense
+  /// position that names it back) or free (listed once), generations are never 0. On failure
+  /// the reader is marked failed and this pool is unspecified (read into a fresh one).
+  void read(ByteReader& r) {
+    std::size_t n = 0;
+    r.count(n, r.remaining() / 8);
+    if (!r.ok()) return;
+    try {
+      entries_.assign(n, Entry{1, kNoSlot});
+    } catch (const std::bad_alloc&) {
+      r.fail();
+      return;
+    }
+    for (Entry& e : entries_) r.u32(e.generation), r.u32(e.slot);
+    r.array(dense_);
+    r.array(free_);
+    if (!r.ok()) return;
+    r.require(n < kNoSlot && dense_.size() + free_.size() == n);
+    std::vector<uint8_t> seen(r.ok() ? n : 0, 0);
+    for (std::size_t i = 0; r.ok() && i < dense_.size(); ++i) {
+      const uint32_t index = dense_[i];
+      r.require(index < n && entries_[index].slot == i && entries_[index].generation != 0 && !seen[index]);
+      if (r.ok()) seen[index] = 1;
+    }
+    for (std::size_t i = 0; r.ok() && i < free_.size(); ++i) {
+      const uint32_t index = free_[i];
+      r.require(index < n && entries_[index].slot == kNoSlot && entries_[index].generation != 0 && !seen[index]);
+      if (r.ok()) seen[index] = 1;
+    }
   }
 
  private:

@@ -50,6 +50,7 @@ namespace gyro::detail {
 namespace {
 
 constexpr float kInf = std::numeric_limits<float>::infinity();
+constexpr float kMaxFinite = std::numeric_limits<float>::max();
 constexpr uint32_t kMaxCells = 4096;
 constexpr uint32_t kMinItemsPerCell = 32;
 constexpr float kBandWidthInBoxes = 5.0f;  // band width in typical box extents (B1: flat from 4 to 8, 3 is 5% slower, 2 is 20%)
@@ -333,8 +334,17 @@ void Broadphase::find_pairs(const BroadphaseInput& in, std::vector<BroadPair>& p
   passive_slots_.clear();
   float ulo[3] = {kInf, kInf, kInf}, uhi[3] = {-kInf, -kInf, -kInf};
   bool any_dynamic_active = false;
+  // A box with a NaN or infinite bound (a body that blew up, e.g. under a huge force) takes
+  // no part: the sweep's +inf sentinels and the band arithmetic need finite boxes.
+  auto finite_box = [&](uint32_t s) {
+    for (int a = 0; a < 3; ++a) {
+      const float lo = coord(in, false, a, s), hi = coord(in, true, a, s);
+      if (!(lo >= -kMaxFinite && lo <= kMaxFinite && hi >= -kMaxFinite && hi <= kMaxFinite)) return false;
+    }
+    return true;
+  };
   for (uint32_t s = 0; s < n; ++s) {
-    if (!(in.flags[s] & kBroadActive)) continue;
+    if (!(in.flags[s] & kBroadActive) || !finite_box(s)) continue;
     active_slots_.push_back(s);
     any_dynamic_active |= (in.flags[s] & kBroadDynamic) != 0;
     for (int a = 0; a < 3; ++a) {
@@ -348,7 +358,7 @@ void Broadphase::find_pairs(const BroadphaseInput& in, std::vector<BroadPair>& p
   // needs an active dynamic one; a sleeping dynamic body pairs with any active body).
   for (uint32_t s = 0; s < n; ++s) {
     const uint8_t f = in.flags[s];
-    if ((f & kBroadActive) || !(any_dynamic_active || (f & kBroadDynamic))) continue;
+    if ((f & kBroadActive) || !(any_dynamic_active || (f & kBroadDynamic)) || !finite_box(s)) continue;
     bool touches = true;
     for (int a = 0; a < 3; ++a) touches &= coord(in, false, a, s) <= uhi[a] && coord(in, true, a, s) >= ulo[a];
     if (touches) passive_slots_.push_back(s);

@@ -1,6 +1,6 @@
 // Broadphase: the pairs of bodies whose bounding boxes overlap, in id order.
 //
-// Input is SoA bounds (finite), the collision filter and per-body flags; output is the
+// Input is SoA bounds (a box with a NaN or infinite bound is left out), the collision filter and per-body flags; output is the
 // candidate pairs (slot a, slot b) with key[a] < key[b], sorted by (key[a], key[b]), where
 // key is the body's id index (unique), so the list depends only on the bodies, never on
 // slots, threads or SIMD width. A pair is reported when the closed boxes overlap, the

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace gyro::detail {
 namespace {
@@ -258,14 +259,8 @@ void ContactSet::update(const BodyStore& s, const std::vector<CandidatePair>& pa
     if (carried(old_[o])) records_.push_back(old_[o]);
 
   // 4. Touch events per body pair (any sub-shape touching), both lists sorted by key.
-  auto touching = [](const std::vector<ContactRecord>& list, std::vector<TouchKey>& keys) {
-    keys.clear();
-    for (const ContactRecord& r : list)
-      if (r.touching() && (keys.empty() || keys.back().key != r.key))
-        keys.push_back({r.key, {{r.index_a(), r.gen_a}, {r.index_b(), r.gen_b}}});
-  };
   touch_old_.swap(touch_new_);  // last step's touching pairs (less those of destroyed bodies)
-  touching(records_, touch_new_);
+  touching_pairs(records_, touch_new_);
   begin_.clear();
   end_.clear();
   std::size_t x = 0, y = 0;
@@ -277,6 +272,21 @@ void ContactSet::update(const BodyStore& s, const std::vector<CandidatePair>& pa
     else
       ++x, ++y;
   }
+}
+
+void ContactSet::touching_pairs(const std::vector<ContactRecord>& list, std::vector<TouchKey>& keys) {
+  keys.clear();
+  for (const ContactRecord& r : list)
+    if (r.touching() && (keys.empty() || keys.back().key != r.key))
+      keys.push_back({r.key, {{r.index_a(), r.gen_a}, {r.index_b(), r.gen_b}}});
+}
+
+void ContactSet::set_records(std::vector<ContactRecord>&& records) {
+  records_ = std::move(records);
+  touching_pairs(records_, touch_new_);
+  touch_old_.clear();
+  begin_.clear();
+  end_.clear();
 }
 
 void ContactSet::hash_into(StateHasher& h) const {

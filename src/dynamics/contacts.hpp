@@ -64,6 +64,10 @@ class ContactSet {
   const std::vector<ContactEvent>& end_events() const { return end_; }
   void clear();
 
+  /// Replaces the records (a snapshot being restored); last step's touching pairs, which the
+  /// next step's events are measured against, follow from them. The events are cleared.
+  void set_records(std::vector<ContactRecord>&& records);
+
   /// Drops every record naming the body (it is being destroyed).
   void remove_body(uint32_t id_index);
 
@@ -83,6 +87,7 @@ class ContactSet {
     ContactEvent event;
   };
   std::vector<TouchKey> touch_old_, touch_new_;
+  static void touching_pairs(const std::vector<ContactRecord>& list, std::vector<TouchKey>& keys);
 };
 
 }  // namespace gyro::detail

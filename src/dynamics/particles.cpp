@@ -16,6 +16,7 @@
 #include "core/validate.hpp"
 #include "dynamics/particle_colliders.hpp"
 #include "dynamics/particles_internal.hpp"
+#include "dynamics/snapshot_io.hpp"
 #include "gyro/raycast.hpp"
 
 #include <cmath>
@@ -380,6 +381,55 @@ void detail::ParticleAccess::hash_into(const ParticleSystem& ps, StateHasher& h)
   for (const ParticleId& id : m.ids) h.add_u64((uint64_t{id.index} << 32) | id.generation);
   h.add_u64(m.colliders.size());
   for (const Collider& c : m.colliders) detail::hash_collider(c, h);
+}
+
+// ---------------------------------------------------------------- snapshot
+
+namespace {
+// The columns and colliders, in one description for both directions.
+template <class Io, class M> void io_particle_state(Io& io, M& m, std::size_t n) {
+  io.f32(m.last_dt);
+  for (auto col : kFloatColumns) io.column(m.*col, n);
+  io.column(m.reseed, n);
+  std::size_t colliders = m.colliders.size();
+  io.count(colliders, io.remaining() / 16);
+  if constexpr (Io::reading) {
+    if (!io.ok()) return;
+    m.colliders.assign(colliders, Collider{});
+  }
+  for (auto& c : m.colliders) detail::io_collider(io, c);
+}
+}  // namespace
+
+void detail::ParticleAccess::write(const ParticleSystem& ps, ByteWriter& w) {
+  const ParticleSystem::Impl& m = *ps.impl_;
+  w.v3(m.settings.gravity), w.enumeration(m.settings.integrator, 2), w.f32(m.settings.damping);
+  m.pool.write(w);
+  io_particle_state(w, m, m.ids.size());
+}
+
+void detail::ParticleAccess::read(ByteReader& r, ParticleSystem& ps) {
+  ParticleSystem::Impl& m = *ps.impl_;
+  ParticleSettings settings;
+  r.v3(settings.gravity), r.enumeration(settings.integrator, 2), r.f32(settings.damping);
+  if (!r.ok() || ps.set_settings(settings) != Status::ok) return r.fail();
+  m.pool.read(r);
+  if (!r.ok()) return;
+  const std::size_t n = m.pool.size();
+  try {
+    m.ids.resize(n);
+  } catch (const std::bad_alloc&) {
+    return r.fail();
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    const detail::Id id = m.pool.id_at(static_cast<uint32_t>(i));
+    m.ids[i] = {id.index, id.generation};
+  }
+  io_particle_state(r, m, n);
+  if (!r.ok()) return;
+  m.live_colliders = 0;
+  for (const Collider& c : m.colliders) m.live_colliders += c.kind != ColliderKind::none;
+  for (std::size_t i = 0; i < n; ++i) r.require(m.reseed[i] <= 1);
 }
 
 }  // namespace gyro

@@ -1001,4 +1001,78 @@ void detail::SoftAccess::hash_into(const SoftBody& body, StateHasher& h) {
   }
 }
 
+// ---------------------------------------------------------------- snapshot
+
+void detail::SoftAccess::add_meshes(const SoftBody& body, SnapshotMeshes& meshes) {
+  for (const SoftCollider& c : body.impl_->colliders) meshes.add(c.mesh.mesh);
+}
+
+namespace {
+// Particles, springs, triangles and colliders, in one description for both directions (the
+// settings and families go through the validating setters on reading).
+template <class Io, class M> void io_soft_state(Io& io, M& m, const detail::SnapshotMeshes& meshes) {
+  for (auto* col : {&m.px, &m.py, &m.pz, &m.vx, &m.vy, &m.vz, &m.qx, &m.qy, &m.qz, &m.w, &m.mass}) io.array(*col);
+  io.array(m.pinned);
+  io.array(m.sa), io.array(m.sb), io.array(m.rest), io.array(m.family);
+  io.u32(m.joints), io.u32(m.grid_nx), io.u32(m.grid_nz);
+  io.array(m.triangles);
+  std::size_t colliders = m.colliders.size();
+  io.count(colliders, io.remaining() / 16);
+  if constexpr (Io::reading) {
+    if (!io.ok()) return;
+    m.colliders.assign(colliders, SoftCollider{});
+  }
+  for (auto& c : m.colliders) {
+    detail::io_collider(io, c.shape);
+    uint32_t mesh = meshes.index_of(c.mesh.mesh);
+    io.u32(mesh);
+    io.v3(c.mesh.position), io.q4(c.mesh.orientation);
+    if constexpr (Io::reading) c.mesh.mesh = meshes.at(mesh, io);
+  }
+}
+}  // namespace
+
+void detail::SoftAccess::write(const SoftBody& body, ByteWriter& w, const SnapshotMeshes& meshes) {
+  const SoftBody::Impl& m = *body.impl_;
+  const SoftSettings& s = m.settings;
+  w.enumeration(s.model, 0xFFFFFFFFu), w.u32(s.substeps), w.u32(s.iterations), w.v3(s.gravity);
+  w.f32(s.damping), w.f32(s.thickness), w.f32(s.friction), w.enumeration(s.response, 0xFFFFFFFFu);
+  w.f32(s.penalty_stiffness);
+  for (const SpringConstants& c : m.families) w.f32(c.stiffness), w.f32(c.damping);
+  io_soft_state(w, m, meshes);
+}
+
+void detail::SoftAccess::read(ByteReader& r, SoftBody& body, const SnapshotMeshes& meshes) {
+  SoftBody::Impl& m = *body.impl_;
+  SoftSettings s;
+  r.enumeration(s.model, 0xFFFFFFFFu), r.u32(s.substeps), r.u32(s.iterations), r.v3(s.gravity);
+  r.f32(s.damping), r.f32(s.thickness), r.f32(s.friction), r.enumeration(s.response, 0xFFFFFFFFu);
+  r.f32(s.penalty_stiffness);
+  if (!r.ok() || body.set_settings(s) != Status::ok) return r.fail();
+  for (uint32_t f = 0; f < kSpringFamilyCount; ++f) {
+    SpringConstants c;
+    r.f32(c.stiffness), r.f32(c.damping);
+    if (!r.ok() || body.set_family(static_cast<SpringFamily>(f), c) != Status::ok) return r.fail();
+  }
+  io_soft_state(r, m, meshes);
+  if (!r.ok()) return;
+  // Everything the solver indexes with must be in range.
+  const std::size_t n = m.px.size();
+  for (const std::vector<float>* col : {&m.py, &m.pz, &m.vx, &m.vy, &m.vz, &m.qx, &m.qy, &m.qz, &m.w, &m.mass})
+    r.require(col->size() == n);
+  r.require(m.pinned.size() == n && n < 0xFFFFFFFFu);
+  const std::size_t springs = m.sa.size();
+  r.require(m.sb.size() == springs && m.rest.size() == springs && m.family.size() == springs);
+  for (std::size_t k = 0; r.ok() && k < springs; ++k)
+    r.require(m.sa[k] < n && m.sb[k] < n && m.family[k] < kSpringFamilyCount);
+  r.require(m.triangles.size() % 3 == 0);
+  for (std::size_t k = 0; r.ok() && k < m.triangles.size(); ++k) r.require(m.triangles[k] < n);
+  for (std::size_t i = 0; r.ok() && i < n; ++i) r.require(m.pinned[i] <= 1);
+  r.require(m.grid_nx == 0 ? m.grid_nz == 0 : uint64_t(m.grid_nx) * m.grid_nz <= n);
+  if (!r.ok()) return;
+  m.live_colliders = 0;
+  for (const SoftCollider& c : m.colliders) m.live_colliders += c.used();
+  m.plan_dirty = true;
+}
+
 }  // namespace gyro

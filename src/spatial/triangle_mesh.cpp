@@ -147,6 +147,10 @@ Status TriangleMesh::create(const MeshData& mesh, TriangleMesh& out) {
 }
 
 std::size_t TriangleMesh::triangle_count() const { return impl_ ? impl_->mesh.triangle_count() : 0; }
+const MeshData& TriangleMesh::data() const {
+  static const MeshData kEmpty;
+  return impl_ ? impl_->mesh : kEmpty;
+}
 Triangle TriangleMesh::triangle(std::size_t i) const { return impl_->mesh.triangle(i); }
 AABB TriangleMesh::bounds() const { return impl_ ? impl_->bvh.bounds : AABB{{0, 0, 0}, {0, 0, 0}}; }
 BvhStats TriangleMesh::stats() const { return impl_ ? impl_->bvh.stats : BvhStats{}; }

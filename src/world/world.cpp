@@ -199,6 +199,14 @@ Status World::get_shape_frame(BodyId id, vec3* offset, quat* rotation) const {
   return Status::ok;
 }
 
+Status World::get_mesh(BodyId id, const TriangleMesh** mesh) const {
+  uint32_t k = 0;
+  GYRO_TRY(slot_of(impl_->bodies, id, &k));
+  if (!mesh) return fail(Status::null_argument, "mesh is null");
+  *mesh = impl_->bodies.mesh[k];
+  return Status::ok;
+}
+
 Status World::get_velocity(BodyId id, vec3* linear, vec3* angular) const {
   uint32_t k = 0;
   GYRO_TRY(slot_of(impl_->bodies, id, &k));

@@ -28,6 +28,7 @@ struct World::Impl {
   detail::IdPool soft_pool;                    // soft bodies: ids over dense slots
   std::vector<std::unique_ptr<SoftBody>> soft_bodies;  // soft_bodies[slot]
   std::vector<std::unique_ptr<detail::BodyHull>> hulls;  // hull bodies' shapes, by body id index
+  std::vector<std::shared_ptr<const TriangleMesh>> owned_meshes;  // meshes a restored snapshot brought
   StepTimings timings;
   StepStats stats;
   uint64_t steps = 0;

@@ -268,5 +268,23 @@ TEST(World, EmptyAndStaticWorldsSkipTheStages) {
   EXPECT_EQ(w->stats().contacts, 0u);
 }
 
+// Finite but enormous settings let bodies overflow to infinity within a step or two; the
+// world must keep stepping (those bodies drop out of the broadphase) and never crash. Found
+// by restoring snapshots with altered bytes.
+TEST(WorldBadInput, BodiesThatOverflowToInfinityDoNotBreakTheStep) {
+  WorldDef def;
+  def.gravity = {0.0f, -3.0e38f, 0.0f};
+  auto w = make_world(def);
+  ASSERT_NE(w, nullptr);
+  add_ground(*w);
+  for (int i = 0; i < 6; ++i) add_box(*w, {0.3f * float(i), 1.0f + 1.1f * float(i), 0.0f});
+  BodyId fast = add_box(*w, {5.0f, 1.0f, 0.0f});
+  ASSERT_EQ(w->set_velocity(fast, {3.0e38f, 3.0e38f, 0.0f}, {}), Status::ok);
+  for (int i = 0; i < 8; ++i) EXPECT_EQ(w->step(i < 4 ? 100.0f : 1.0f / 60.0f), Status::ok);
+  vec3 p = position_of(*w, fast);
+  EXPECT_FALSE(p.x >= -3.0e38f && p.x <= 3.0e38f);  // it did overflow
+  EXPECT_NE(w->hash(), 0u);
+}
+
 }  // namespace
 }  // namespace gyro
