@@ -22,6 +22,7 @@ void run_p2(const Options&);
 void run_p3(const Options&);
 void run_c1(const Options&);
 void run_gjk(const Options&);
+void run_snap(const Options&);
 
 namespace {
 const Workload kWorkloads[] = {
@@ -42,6 +43,7 @@ const Workload kWorkloads[] = {
     {"P3", "16 pyramids of base 10 (880 boxes) on one ground, 300 steps, sleeping off; peer: Bullet", run_p3},
     {"C1", "hanging cloth 32^2..256^2, two corners pinned, 600 steps; xpbd and springs; peer: Bullet btSoftBody", run_c1},
     {"GJK", "GJK / EPA on the N1 OBB pairs and random hulls: intersection, distance, penetration; peers: libccd, Bullet", run_gjk},
+    {"SNAP", "snapshot / restore of 1k and 10k warm boxes (rollback), against memcpy of the bytes; hash check after", run_snap},
 };
 
 int usage() {
