@@ -75,6 +75,7 @@ GYRO_API uint32_t gyro_features(void) {
 #endif
 #if defined(GYRO_HAS_DYNAMICS)
   f |= GYRO_FEATURE_SNAPSHOT;
+  f |= GYRO_FEATURE_REPLAY;
 #endif
   return f;
 }

@@ -3,6 +3,7 @@
 #define GYRO_BUILDING 1
 #include "gyro.h"
 
+#include "capi_recorder.hpp"
 #include "capi_support.hpp"
 #include "capi_world.hpp"
 
@@ -69,7 +70,7 @@ GYRO_API gyro_status gyro_world_snapshot(const gyro_world* world, void* buffer, 
 }
 
 GYRO_API gyro_status gyro_world_restore(gyro_world* world, const void* buffer, uint64_t size) {
-  return guarded([&]() -> Status {
+  const gyro_status st = guarded([&]() -> Status {
     GYRO_TRY(require(world, "world"));
     GYRO_TRY(require(buffer, "buffer"));
     GYRO_TRY(check_size(size));
@@ -79,6 +80,8 @@ GYRO_API gyro_status gyro_world_restore(gyro_world* world, const void* buffer, u
     rekey_meshes(world);
     return Status::ok;
   });
+  // A recording follows the restore (capi_recorder.hpp): replay restores the same bytes.
+  return gyro::capi::rec::recorded<&gyro_world_restore>(st, world, buffer, size);
 }
 
 GYRO_API gyro_status gyro_world_create_from_snapshot(const void* buffer, uint64_t size, gyro_world** out) {

@@ -10,6 +10,7 @@
 #include "gyro.h"
 
 #include "capi_support.hpp"
+#include "capi_recorder.hpp"
 #include "capi_world.hpp"
 #include "core/validate.hpp"
 #include "gyro/soft_body.hpp"
@@ -342,7 +343,7 @@ GYRO_API gyro_soft_mesh_def gyro_soft_mesh_def_default(void) {
 }
 
 GYRO_API gyro_status gyro_world_create_cloth(gyro_world* world, const gyro_cloth_def* def, gyro_soft_body_id* out) {
-  return guarded([&]() -> Status {
+  const gyro_status st = guarded([&]() -> Status {
     GYRO_TRY(require_world(world));
     GYRO_TRY(require(def, "def"));
     GYRO_TRY(require(out, "out"));
@@ -352,11 +353,12 @@ GYRO_API gyro_status gyro_world_create_cloth(gyro_world* world, const gyro_cloth
     GYRO_TRY(gyro::SoftBody::make_cloth(c, &body));
     return add_to_world(world, body, out);
   });
+  return gyro::capi::rec::recorded<&gyro_world_create_cloth>(st, world, def, out);
 }
 
 GYRO_API gyro_status gyro_world_create_soft_cube(gyro_world* world, const gyro_soft_cube_def* def,
                                                  gyro_soft_body_id* out) {
-  return guarded([&]() -> Status {
+  const gyro_status st = guarded([&]() -> Status {
     GYRO_TRY(require_world(world));
     GYRO_TRY(require(def, "def"));
     GYRO_TRY(require(out, "out"));
@@ -366,11 +368,12 @@ GYRO_API gyro_status gyro_world_create_soft_cube(gyro_world* world, const gyro_s
     GYRO_TRY(gyro::SoftBody::make_cube(c, &body));
     return add_to_world(world, body, out);
   });
+  return gyro::capi::rec::recorded<&gyro_world_create_soft_cube>(st, world, def, out);
 }
 
 GYRO_API gyro_status gyro_world_create_soft_mesh(gyro_world* world, const gyro_soft_mesh_def* def,
                                                  gyro_soft_body_id* out) {
-  return guarded([&]() -> Status {
+  const gyro_status st = guarded([&]() -> Status {
     GYRO_TRY(require_world(world));
     GYRO_TRY(require(def, "def"));
     GYRO_TRY(require(out, "out"));
@@ -381,14 +384,16 @@ GYRO_API gyro_status gyro_world_create_soft_mesh(gyro_world* world, const gyro_s
     GYRO_TRY(gyro::SoftBody::make_from_mesh(m, &body));
     return add_to_world(world, body, out);
   });
+  return gyro::capi::rec::recorded<&gyro_world_create_soft_mesh>(st, world, def, out);
 }
 
 GYRO_API gyro_status gyro_world_destroy_soft_body(gyro_world* world, gyro_soft_body_id id) {
-  return guarded([&]() -> Status {
+  const gyro_status st = guarded([&]() -> Status {
     gyro::SoftBody* b = nullptr;
     GYRO_TRY(require_soft(world, id, &b));
     return world->world->destroy_soft_body(id_of(id));
   });
+  return gyro::capi::rec::recorded<&gyro_world_destroy_soft_body>(st, world, id);
 }
 
 GYRO_API uint32_t gyro_soft_body_is_valid(const gyro_world* world, gyro_soft_body_id id) {
@@ -408,7 +413,7 @@ GYRO_API gyro_status gyro_world_soft_body_count(const gyro_world* world, int32_t
 
 GYRO_API gyro_status gyro_soft_body_set_settings(gyro_world* world, gyro_soft_body_id id,
                                                  const gyro_soft_settings* settings) {
-  return guarded([&]() -> Status {
+  const gyro_status st = guarded([&]() -> Status {
     gyro::SoftBody* b = nullptr;
     GYRO_TRY(require_soft(world, id, &b));
     GYRO_TRY(require(settings, "settings"));
@@ -417,6 +422,7 @@ GYRO_API gyro_status gyro_soft_body_set_settings(gyro_world* world, gyro_soft_bo
     GYRO_TRY(check_model_constants(s.model, *b, -1, nullptr));
     return b->set_settings(s);
   });
+  return gyro::capi::rec::recorded<&gyro_soft_body_set_settings>(st, world, id, settings);
 }
 
 GYRO_API gyro_status gyro_soft_body_get_settings(const gyro_world* world, gyro_soft_body_id id,
@@ -435,7 +441,7 @@ GYRO_API gyro_status gyro_soft_body_get_settings(const gyro_world* world, gyro_s
 
 GYRO_API gyro_status gyro_soft_body_set_family(gyro_world* world, gyro_soft_body_id id, gyro_spring_family family,
                                                const gyro_spring_constants* constants) {
-  return guarded([&]() -> Status {
+  const gyro_status st = guarded([&]() -> Status {
     gyro::SoftBody* b = nullptr;
     GYRO_TRY(require_soft(world, id, &b));
     GYRO_TRY(check_family(family));
@@ -445,6 +451,7 @@ GYRO_API gyro_status gyro_soft_body_set_family(gyro_world* world, gyro_soft_body
     GYRO_TRY(check_model_constants(b->settings().model, *b, int(family), &c));
     return b->set_family(static_cast<gyro::SpringFamily>(family), c);
   });
+  return gyro::capi::rec::recorded<&gyro_soft_body_set_family>(st, world, id, family, constants);
 }
 
 GYRO_API gyro_status gyro_soft_body_get_family(const gyro_world* world, gyro_soft_body_id id,
@@ -460,28 +467,32 @@ GYRO_API gyro_status gyro_soft_body_get_family(const gyro_world* world, gyro_sof
 }
 
 GYRO_API gyro_status gyro_soft_body_set_mass(gyro_world* world, gyro_soft_body_id id, float mass) {
-  return guarded([&]() -> Status {
+  const gyro_status st = guarded([&]() -> Status {
     gyro::SoftBody* b = nullptr;
     GYRO_TRY(require_soft(world, id, &b));
     GYRO_TRY(check_positive(mass, "mass"));
     return b->set_mass(mass);
   });
+  return gyro::capi::rec::recorded<&gyro_soft_body_set_mass>(st, world, id, mass);
 }
 
 GYRO_API gyro_status gyro_soft_body_set_particle_mass(gyro_world* world, gyro_soft_body_id id, uint32_t particle,
                                                       float mass) {
-  return on_particle(world, id, particle, [&](gyro::SoftBody& b) -> Status {
+  const gyro_status st = on_particle(world, id, particle, [&](gyro::SoftBody& b) -> Status {
     GYRO_TRY(check_positive(mass, "mass"));
     return b.set_particle_mass(particle, mass);
   });
+  return gyro::capi::rec::recorded<&gyro_soft_body_set_particle_mass>(st, world, id, particle, mass);
 }
 
 GYRO_API gyro_status gyro_soft_body_pin(gyro_world* world, gyro_soft_body_id id, uint32_t particle) {
-  return on_particle(world, id, particle, [&](gyro::SoftBody& b) { return b.pin(particle); });
+  const gyro_status st = on_particle(world, id, particle, [&](gyro::SoftBody& b) { return b.pin(particle); });
+  return gyro::capi::rec::recorded<&gyro_soft_body_pin>(st, world, id, particle);
 }
 
 GYRO_API gyro_status gyro_soft_body_unpin(gyro_world* world, gyro_soft_body_id id, uint32_t particle) {
-  return on_particle(world, id, particle, [&](gyro::SoftBody& b) { return b.unpin(particle); });
+  const gyro_status st = on_particle(world, id, particle, [&](gyro::SoftBody& b) { return b.unpin(particle); });
+  return gyro::capi::rec::recorded<&gyro_soft_body_unpin>(st, world, id, particle);
 }
 
 GYRO_API gyro_status gyro_soft_body_is_pinned(const gyro_world* world, gyro_soft_body_id id, uint32_t particle,
@@ -508,10 +519,11 @@ GYRO_API gyro_status gyro_soft_body_get_position(const gyro_world* world, gyro_s
 
 GYRO_API gyro_status gyro_soft_body_set_position(gyro_world* world, gyro_soft_body_id id, uint32_t particle,
                                                  gyro_vec3 position) {
-  return on_particle(world, id, particle, [&](gyro::SoftBody& b) -> Status {
+  const gyro_status st = on_particle(world, id, particle, [&](gyro::SoftBody& b) -> Status {
     GYRO_TRY(check_finite(position, "position"));
     return b.set_position(particle, v3(position));
   });
+  return gyro::capi::rec::recorded<&gyro_soft_body_set_position>(st, world, id, particle, position);
 }
 
 GYRO_API gyro_status gyro_soft_body_get_velocity(const gyro_world* world, gyro_soft_body_id id, uint32_t particle,
@@ -527,10 +539,11 @@ GYRO_API gyro_status gyro_soft_body_get_velocity(const gyro_world* world, gyro_s
 
 GYRO_API gyro_status gyro_soft_body_set_velocity(gyro_world* world, gyro_soft_body_id id, uint32_t particle,
                                                  gyro_vec3 velocity) {
-  return on_particle(world, id, particle, [&](gyro::SoftBody& b) -> Status {
+  const gyro_status st = on_particle(world, id, particle, [&](gyro::SoftBody& b) -> Status {
     GYRO_TRY(check_finite(velocity, "velocity"));
     return b.set_velocity(particle, v3(velocity));
   });
+  return gyro::capi::rec::recorded<&gyro_soft_body_set_velocity>(st, world, id, particle, velocity);
 }
 
 GYRO_API gyro_status gyro_soft_body_cloth_index(const gyro_world* world, gyro_soft_body_id id, uint32_t ix,
@@ -550,7 +563,7 @@ GYRO_API gyro_status gyro_soft_body_cloth_index(const gyro_world* world, gyro_so
 
 GYRO_API gyro_status gyro_soft_body_add_distance_joint(gyro_world* world, gyro_soft_body_id id, uint32_t a,
                                                        uint32_t b, float rest_length, uint32_t* out_joint) {
-  return guarded([&]() -> Status {
+  const gyro_status st = guarded([&]() -> Status {
     gyro::SoftBody* body = nullptr;
     GYRO_TRY(require_soft(world, id, &body));
     GYRO_TRY(check_particle(*body, a, "a"));
@@ -565,10 +578,11 @@ GYRO_API gyro_status gyro_soft_body_add_distance_joint(gyro_world* world, gyro_s
     if (out_joint) *out_joint = joint;
     return Status::ok;
   });
+  return gyro::capi::rec::recorded<&gyro_soft_body_add_distance_joint>(st, world, id, a, b, rest_length, out_joint);
 }
 
 GYRO_API gyro_status gyro_soft_body_add_ball_joint(gyro_world* world, gyro_soft_body_id id, uint32_t a, uint32_t b) {
-  return guarded([&]() -> Status {
+  const gyro_status st = guarded([&]() -> Status {
     gyro::SoftBody* body = nullptr;
     GYRO_TRY(require_soft(world, id, &body));
     GYRO_TRY(check_particle(*body, a, "a"));
@@ -576,11 +590,12 @@ GYRO_API gyro_status gyro_soft_body_add_ball_joint(gyro_world* world, gyro_soft_
     if (a == b) return fail(Status::invalid_argument, "a joint joins two different particles (a = b = %u)", a);
     return body->add_ball_joint(a, b);
   });
+  return gyro::capi::rec::recorded<&gyro_soft_body_add_ball_joint>(st, world, id, a, b);
 }
 
 GYRO_API gyro_status gyro_soft_body_add_hinge_joint(gyro_world* world, gyro_soft_body_id id, uint32_t a0,
                                                     uint32_t b0, uint32_t a1, uint32_t b1) {
-  return guarded([&]() -> Status {
+  const gyro_status st = guarded([&]() -> Status {
     gyro::SoftBody* body = nullptr;
     GYRO_TRY(require_soft(world, id, &body));
     GYRO_TRY(check_particle(*body, a0, "a0"));
@@ -595,6 +610,7 @@ GYRO_API gyro_status gyro_soft_body_add_hinge_joint(gyro_world* world, gyro_soft
                   a0, a1, b0, b1);
     return body->add_hinge_joint(a0, b0, a1, b1);
   });
+  return gyro::capi::rec::recorded<&gyro_soft_body_add_hinge_joint>(st, world, id, a0, b0, a1, b1);
 }
 
 GYRO_API gyro_status gyro_soft_body_get_view(const gyro_world* world, gyro_soft_body_id id, gyro_soft_body_view* out) {

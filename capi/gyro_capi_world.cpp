@@ -12,6 +12,7 @@
 #include "capi_convex.hpp"
 #include "capi_handles.hpp"
 #include "capi_support.hpp"
+#include "capi_recorder.hpp"
 #include "capi_world.hpp"
 #include "core/validate.hpp"
 #include "gyro/world.hpp"
@@ -282,12 +283,13 @@ GYRO_API void gyro_world_destroy(gyro_world* world) {
 }
 
 GYRO_API gyro_status gyro_world_step(gyro_world* world, float dt) {
-  return guarded([&]() -> Status {
+  const gyro_status st = guarded([&]() -> Status {
     GYRO_TRY(require_world(world));
     GYRO_TRY(check_finite(dt, "dt"));
     if (!(dt > 0.0f)) return fail(Status::invalid_argument, "dt = %g must be > 0", double(dt));
     return world->world->step(dt);
   });
+  return gyro::capi::rec::recorded<&gyro_world_step>(st, world, dt);
 }
 
 GYRO_API gyro_status gyro_world_hash(const gyro_world* world, uint64_t* out) {
@@ -313,7 +315,7 @@ GYRO_API gyro_status gyro_world_body_count(const gyro_world* world, int32_t* out
 GYRO_API gyro_body_def gyro_body_def_default(void) { return default_body_def(); }
 
 GYRO_API gyro_status gyro_body_create(gyro_world* world, const gyro_body_def* def, gyro_body_id* out) {
-  return guarded([&]() -> Status {
+  const gyro_status st = guarded([&]() -> Status {
     GYRO_TRY(require_world(world));
     GYRO_TRY(require(def, "def"));
     GYRO_TRY(require(out, "out"));
@@ -337,15 +339,17 @@ GYRO_API gyro_status gyro_body_create(gyro_world* world, const gyro_body_def* de
     *out = c_id(id);
     return Status::ok;
   });
+  return gyro::capi::rec::recorded<&gyro_body_create>(st, world, def, out);
 }
 
 GYRO_API gyro_status gyro_body_destroy(gyro_world* world, gyro_body_id id) {
-  return guarded([&]() -> Status {
+  const gyro_status st = guarded([&]() -> Status {
     GYRO_TRY(require_body(world, id));
     GYRO_TRY(world->world->destroy_body(id_of(id)));
     world->meshes.erase({id.index, id.generation});  // no-op for other shapes; never throws
     return Status::ok;
   });
+  return gyro::capi::rec::recorded<&gyro_body_destroy>(st, world, id);
 }
 
 GYRO_API uint32_t gyro_body_is_valid(const gyro_world* world, gyro_body_id id) {
@@ -382,12 +386,13 @@ GYRO_API gyro_status gyro_body_get_shape_frame(const gyro_world* world, gyro_bod
 
 GYRO_API gyro_status gyro_body_set_transform(gyro_world* world, gyro_body_id id, gyro_vec3 position,
                                              gyro_quat orientation) {
-  return guarded([&]() -> Status {
+  const gyro_status st = guarded([&]() -> Status {
     GYRO_TRY(require_body(world, id));
     GYRO_TRY(check_finite(position, "position"));
     GYRO_TRY(check_finite(orientation, "orientation"));
     return world->world->set_transform(id_of(id), v3(position), q4(orientation));
   });
+  return gyro::capi::rec::recorded<&gyro_body_set_transform>(st, world, id, position, orientation);
 }
 
 GYRO_API gyro_status gyro_body_get_velocity(const gyro_world* world, gyro_body_id id, gyro_vec3* linear,
@@ -404,12 +409,13 @@ GYRO_API gyro_status gyro_body_get_velocity(const gyro_world* world, gyro_body_i
 }
 
 GYRO_API gyro_status gyro_body_set_velocity(gyro_world* world, gyro_body_id id, gyro_vec3 linear, gyro_vec3 angular) {
-  return guarded([&]() -> Status {
+  const gyro_status st = guarded([&]() -> Status {
     GYRO_TRY(require_body(world, id));
     GYRO_TRY(check_finite(linear, "linear"));
     GYRO_TRY(check_finite(angular, "angular"));
     return world->world->set_velocity(id_of(id), v3(linear), v3(angular));
   });
+  return gyro::capi::rec::recorded<&gyro_body_set_velocity>(st, world, id, linear, angular);
 }
 
 GYRO_API gyro_status gyro_body_get_mass(const gyro_world* world, gyro_body_id id, float* out) {
@@ -446,54 +452,60 @@ GYRO_API gyro_status gyro_body_get_user_data(const gyro_world* world, gyro_body_
 }
 
 GYRO_API gyro_status gyro_body_apply_force(gyro_world* world, gyro_body_id id, gyro_vec3 force, gyro_vec3 world_point) {
-  return guarded([&]() -> Status {
+  const gyro_status st = guarded([&]() -> Status {
     GYRO_TRY(require_body(world, id));
     GYRO_TRY(check_finite(force, "force"));
     GYRO_TRY(check_finite(world_point, "world_point"));
     return world->world->apply_force(id_of(id), v3(force), v3(world_point));
   });
+  return gyro::capi::rec::recorded<&gyro_body_apply_force>(st, world, id, force, world_point);
 }
 
 GYRO_API gyro_status gyro_body_apply_force_at_center(gyro_world* world, gyro_body_id id, gyro_vec3 force) {
-  return guarded([&]() -> Status {
+  const gyro_status st = guarded([&]() -> Status {
     GYRO_TRY(require_body(world, id));
     GYRO_TRY(check_finite(force, "force"));
     return world->world->apply_force_at_center(id_of(id), v3(force));
   });
+  return gyro::capi::rec::recorded<&gyro_body_apply_force_at_center>(st, world, id, force);
 }
 
 GYRO_API gyro_status gyro_body_apply_torque(gyro_world* world, gyro_body_id id, gyro_vec3 torque) {
-  return guarded([&]() -> Status {
+  const gyro_status st = guarded([&]() -> Status {
     GYRO_TRY(require_body(world, id));
     GYRO_TRY(check_finite(torque, "torque"));
     return world->world->apply_torque(id_of(id), v3(torque));
   });
+  return gyro::capi::rec::recorded<&gyro_body_apply_torque>(st, world, id, torque);
 }
 
 GYRO_API gyro_status gyro_body_apply_linear_impulse(gyro_world* world, gyro_body_id id, gyro_vec3 impulse,
                                                     gyro_vec3 world_point) {
-  return guarded([&]() -> Status {
+  const gyro_status st = guarded([&]() -> Status {
     GYRO_TRY(require_body(world, id));
     GYRO_TRY(check_finite(impulse, "impulse"));
     GYRO_TRY(check_finite(world_point, "world_point"));
     return world->world->apply_linear_impulse(id_of(id), v3(impulse), v3(world_point));
   });
+  return gyro::capi::rec::recorded<&gyro_body_apply_linear_impulse>(st, world, id, impulse, world_point);
 }
 
 GYRO_API gyro_status gyro_body_apply_angular_impulse(gyro_world* world, gyro_body_id id, gyro_vec3 impulse) {
-  return guarded([&]() -> Status {
+  const gyro_status st = guarded([&]() -> Status {
     GYRO_TRY(require_body(world, id));
     GYRO_TRY(check_finite(impulse, "impulse"));
     return world->world->apply_angular_impulse(id_of(id), v3(impulse));
   });
+  return gyro::capi::rec::recorded<&gyro_body_apply_angular_impulse>(st, world, id, impulse);
 }
 
 GYRO_API gyro_status gyro_body_set_awake(gyro_world* world, gyro_body_id id, uint32_t awake) {
-  return guarded([&]() -> Status {
+  const gyro_status st = guarded([&]() -> Status {
     GYRO_TRY(require_body(world, id));
     GYRO_TRY(check_bool(awake, "awake"));
     return world->world->set_awake(id_of(id), awake != 0);
   });
+  return gyro::capi::rec::recorded<&gyro_body_set_awake>(st, world, id, awake);
 }
 
 GYRO_API gyro_status gyro_body_is_awake(const gyro_world* world, gyro_body_id id, uint32_t* out) {

@@ -665,7 +665,7 @@ const DetScene kScenes[] = {
     {"world_particles", scene_world_particles, 0x8e3766db8d8855a1ull},
     {"soft_cloth", scene_soft_cloth, 0x4b131c88424dd139ull},
     {"convex_bodies", scene_convex_bodies, 0x45809748c4eecc2eull},
-    {"snapshot_restore", scene_snapshot_restore, 0x052b2ff69d0695b7ull},
+    {"snapshot_restore", scene_snapshot_restore, 0x5a7ce78bef94a882ull},
 #endif
 };
 

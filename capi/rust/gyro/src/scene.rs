@@ -1,0 +1,150 @@
+//! Scenes: models (spheres, boxes, planes, instanced meshes) placed by transforms and
+//! parents, under a BVH or an octree.
+use core::ptr::{self, NonNull};
+
+use crate::{check, count, sys, Error, Mesh, Rays, Result, Status, Vec3};
+
+pub type ModelDef = sys::gyro_model_def;
+pub type ModelId = sys::gyro_model_id;
+pub type Transform = sys::gyro_transform;
+
+/// The acceleration structure of a scene.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SceneAccel {
+    Bvh,
+    Octree,
+}
+
+/// Per-ray scene results: t, the model hit (null id for a miss) and its primitive (the
+/// triangle of a mesh model, 0 for other shapes, -1 for a miss, GYRO_RAY_INVALID), and
+/// optionally the normal and the barycentrics. Each slice is at least as long as the rays.
+pub struct SceneHits<'a> {
+    pub t: &'a mut [f32],
+    pub model: &'a mut [ModelId],
+    pub primitive: Option<&'a mut [i32]>,
+    pub normal: Option<[&'a mut [f32]; 3]>,
+    pub uv: Option<[&'a mut [f32]; 2]>,
+}
+
+impl<'a> SceneHits<'a> {
+    pub fn new(t: &'a mut [f32], model: &'a mut [ModelId]) -> Self {
+        SceneHits { t, model, primitive: None, normal: None, uv: None }
+    }
+
+    fn raw(&mut self, rays: usize) -> Result<sys::gyro_scene_hit_soa> {
+        let mut lens = vec![self.t.len(), self.model.len()];
+        lens.extend(self.primitive.iter().map(|s| s.len()));
+        lens.extend(self.normal.iter().flat_map(|n| n.iter().map(|s| s.len())));
+        lens.extend(self.uv.iter().flat_map(|n| n.iter().map(|s| s.len())));
+        if lens.iter().any(|&l| l < rays) {
+            return Err(Error::local(Status::InvalidCount, format!("scene hits: {lens:?} elements for {rays} rays")));
+        }
+        let primitive = self.primitive.as_mut().map_or(ptr::null_mut(), |s| s.as_mut_ptr());
+        let (nx, ny, nz) = match &mut self.normal {
+            Some([x, y, z]) => (x.as_mut_ptr(), y.as_mut_ptr(), z.as_mut_ptr()),
+            None => (ptr::null_mut(), ptr::null_mut(), ptr::null_mut()),
+        };
+        let (u, v) = match &mut self.uv {
+            Some([u, v]) => (u.as_mut_ptr(), v.as_mut_ptr()),
+            None => (ptr::null_mut(), ptr::null_mut()),
+        };
+        Ok(sys::gyro_scene_hit_soa { t: self.t.as_mut_ptr(), model: self.model.as_mut_ptr(), primitive, nx, ny, nz, u, v })
+    }
+}
+
+/// A set of models; destroyed on drop (mesh models keep their meshes alive in the scene).
+pub struct Scene {
+    raw: NonNull<sys::gyro_scene>,
+}
+
+unsafe impl Send for Scene {}
+
+impl Drop for Scene {
+    fn drop(&mut self) {
+        unsafe { sys::gyro_scene_destroy(self.raw.as_ptr()) }
+    }
+}
+
+impl Scene {
+    pub fn new(accel: SceneAccel) -> Result<Scene> {
+        let a = match accel {
+            SceneAccel::Bvh => sys::GYRO_SCENE_BVH,
+            SceneAccel::Octree => sys::GYRO_SCENE_OCTREE,
+        };
+        let mut raw = ptr::null_mut();
+        check(unsafe { sys::gyro_scene_create(a, &mut raw) })?;
+        Ok(Scene { raw: NonNull::new(raw).expect("gyro_scene_create returned GYRO_OK and NULL") })
+    }
+
+    /// A unit sphere at the origin, identity transform, no parent.
+    pub fn model_def() -> ModelDef {
+        unsafe { sys::gyro_model_def_default() }
+    }
+
+    pub fn as_ptr(&self) -> *const sys::gyro_scene {
+        self.raw.as_ptr()
+    }
+
+    /// Adds a model; `mesh` is the mesh of a GYRO_MODEL_MESH model (the scene keeps its own
+    /// reference) and replaces def.mesh.
+    pub fn add_model(&mut self, def: &ModelDef, mesh: Option<&Mesh>) -> Result<ModelId> {
+        let mut d = *def;
+        d.mesh = mesh.map_or(ptr::null(), |m| m.as_ptr());
+        let mut id = ModelId { index: 0, generation: 0 };
+        check(unsafe { sys::gyro_scene_add_model(self.raw.as_ptr(), &d, &mut id) })?;
+        Ok(id)
+    }
+
+    pub fn remove_model(&mut self, id: ModelId) -> Result<()> {
+        check(unsafe { sys::gyro_scene_remove_model(self.raw.as_ptr(), id) })
+    }
+
+    /// The model's transform relative to its parent.
+    pub fn set_transform(&mut self, id: ModelId, local: &Transform) -> Result<()> {
+        check(unsafe { sys::gyro_scene_set_transform(self.raw.as_ptr(), id, local) })
+    }
+
+    /// A null parent detaches the model.
+    pub fn set_parent(&mut self, id: ModelId, parent: ModelId) -> Result<()> {
+        check(unsafe { sys::gyro_scene_set_parent(self.raw.as_ptr(), id, parent) })
+    }
+
+    pub fn model_count(&self) -> usize {
+        unsafe { sys::gyro_scene_model_count(self.as_ptr()).max(0) as usize }
+    }
+
+    /// The closest hit of every ray (ties to the lower model index).
+    pub fn raycast_closest(&self, rays: &Rays, hits: &mut SceneHits) -> Result<()> {
+        let n = rays.len()?;
+        let h = hits.raw(n)?;
+        let r = rays.raw();
+        check(unsafe { sys::gyro_scene_raycast_closest(self.as_ptr(), &r, count(n, "rays")?, &h) })
+    }
+
+    /// Any hit (occlusion, line of sight).
+    pub fn raycast_any(&self, rays: &Rays, hits: &mut SceneHits) -> Result<()> {
+        let n = rays.len()?;
+        let h = hits.raw(n)?;
+        let r = rays.raw();
+        check(unsafe { sys::gyro_scene_raycast_any(self.as_ptr(), &r, count(n, "rays")?, &h) })
+    }
+
+    /// The models overlapping a sphere, in ascending id order.
+    pub fn query_sphere(&self, center: Vec3, radius: f32) -> Result<Vec<ModelId>> {
+        let (cx, cy, cz, r) = ([center.x], [center.y], [center.z], [radius]);
+        let shape = sys::gyro_shape_soa {
+            r#type: sys::GYRO_SHAPE_SPHERE,
+            reserved: 0,
+            r#as: sys::gyro_shape_soa_as {
+                sphere: sys::gyro_sphere_soa { cx: cx.as_ptr(), cy: cy.as_ptr(), cz: cz.as_ptr(), r: r.as_ptr() },
+            },
+        };
+        let mut n = 0;
+        check(unsafe { sys::gyro_scene_query(self.as_ptr(), &shape, ptr::null_mut(), 0, &mut n) })?;
+        let mut out = vec![ModelId { index: 0, generation: 0 }; n.max(0) as usize];
+        let mut got = 0;
+        check(unsafe { sys::gyro_scene_query(self.as_ptr(), &shape, out.as_mut_ptr(), n, &mut got) })?;
+        out.truncate(got.clamp(0, n) as usize);
+        Ok(out)
+    }
+}
