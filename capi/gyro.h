@@ -44,8 +44,8 @@ GYRO_API const char* gyro_version_string(void);
 /** Bits of gyro_features(): what this build has. */
 enum {
   GYRO_FEATURE_OPENMP = 1u << 0,        /**< batch calls can use several threads */
-  GYRO_FEATURE_SIMD_SSE2 = 1u << 1,     /**< SIMD levels compiled in (see also */
-  GYRO_FEATURE_SIMD_AVX2 = 1u << 2,     /**< gyro_simd_level_available for the CPU) */
+  GYRO_FEATURE_SIMD_SSE2 = 1u << 1,     /**< SSE2 kernels compiled in (gyro_simd_level_available: and the CPU has it) */
+  GYRO_FEATURE_SIMD_AVX2 = 1u << 2,     /**< AVX2 kernels compiled in */
   GYRO_FEATURE_SIMD_AVX512 = 1u << 3,
   GYRO_FEATURE_SIMD_NEON = 1u << 4,
   GYRO_FEATURE_MATH = 1u << 8,          /**< math and deterministic trigonometry */
@@ -1142,9 +1142,13 @@ GYRO_API gyro_status gyro_world_create_from_snapshot(const void* buffer, uint64_
 /** Starts recording the world's calls (a snapshot of the world now is the recording's start).
  *  Errors: NULL_ARGUMENT, INVALID_ARGUMENT (already recording), OUT_OF_MEMORY. */
 GYRO_API gyro_status gyro_world_record_begin(gyro_world* world);
-/** The recording so far: its size in bytes, and a copy (capacity below the size:
- *  INVALID_COUNT, nothing written). Errors: NULL_ARGUMENT, INVALID_ARGUMENT (not recording). */
+/** The recording so far: its size in bytes. Errors: NULL_ARGUMENT, INVALID_ARGUMENT (not
+ *  recording), OUT_OF_MEMORY (a call could not be recorded for lack of memory: the recording
+ *  is incomplete and stays so until gyro_world_record_end). */
 GYRO_API gyro_status gyro_world_record_size(const gyro_world* world, uint64_t* out);
+/** Copies the recording so far (a valid recording on its own: it is sealed with its end record
+ *  and checksum). Errors: as gyro_world_record_size, INVALID_COUNT (capacity below the size;
+ *  nothing written). */
 GYRO_API gyro_status gyro_world_record_copy(const gyro_world* world, void* buffer, uint64_t capacity,
                                             uint64_t* out_size);
 /** Writes the recording so far to a file. Errors: as above, INVALID_ARGUMENT (cannot write). */
@@ -1165,10 +1169,15 @@ typedef struct gyro_replay_report {
 } gyro_replay_report;
 
 /** Replays a recording held in memory; out->struct_size must be set. A divergence is a result
- *  (GYRO_OK, diverged = 1), not an error. Errors: NULL_ARGUMENT, INVALID_ARGUMENT (struct_size),
- *  CORRUPT_DATA (truncated, bad checksum, unknown call, another version). */
+ *  (GYRO_OK, diverged = 1), not an error: a step whose hash differs (first_divergent_step is
+ *  that step, with both hashes), or a call that fails on replay or returns another id than it
+ *  did when recorded (first_divergent_step is the next step, both hashes 0). Replay goes on to
+ *  the end, so the counts and final_hash cover the whole recording. Errors (*out untouched):
+ *  NULL_ARGUMENT, INVALID_ARGUMENT (struct_size), CORRUPT_DATA (truncated, bad checksum,
+ *  unknown call, bad geometry, another format version, a start snapshot that does not load). */
 GYRO_API gyro_status gyro_replay(const void* data, uint64_t size, gyro_replay_report* out);
-/** Replays a recording file (see gyro_world_record_save). */
+/** Replays a recording file (see gyro_world_record_save). Errors: as gyro_replay,
+ *  INVALID_ARGUMENT (the file cannot be read, or is over 1 GiB). */
 GYRO_API gyro_status gyro_replay_file(const char* path, gyro_replay_report* out);
 
 #ifdef __cplusplus

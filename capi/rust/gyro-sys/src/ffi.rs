@@ -37,9 +37,9 @@ pub type gyro_convex_status = u32;
 // ---------------------------------------------------------------- constants
 /// batch calls can use several threads
 pub const GYRO_FEATURE_OPENMP: u32 = 1;
-/// SIMD levels compiled in (see also
+/// SSE2 kernels compiled in (gyro_simd_level_available: and the CPU has it)
 pub const GYRO_FEATURE_SIMD_SSE2: u32 = 2;
-/// gyro_simd_level_available for the CPU)
+/// AVX2 kernels compiled in
 pub const GYRO_FEATURE_SIMD_AVX2: u32 = 4;
 pub const GYRO_FEATURE_SIMD_AVX512: u32 = 8;
 pub const GYRO_FEATURE_SIMD_NEON: u32 = 16;
@@ -1337,10 +1337,14 @@ extern "C" {
     /// Errors: NULL_ARGUMENT, INVALID_ARGUMENT (already recording), OUT_OF_MEMORY.
     pub fn gyro_world_record_begin(world: *mut gyro_world) -> gyro_status;
 
-    /// The recording so far: its size in bytes, and a copy (capacity below the size:
-    /// INVALID_COUNT, nothing written). Errors: NULL_ARGUMENT, INVALID_ARGUMENT (not recording).
+    /// The recording so far: its size in bytes. Errors: NULL_ARGUMENT, INVALID_ARGUMENT (not
+    /// recording), OUT_OF_MEMORY (a call could not be recorded for lack of memory: the recording
+    /// is incomplete and stays so until gyro_world_record_end).
     pub fn gyro_world_record_size(world: *const gyro_world, out: *mut u64) -> gyro_status;
 
+    /// Copies the recording so far (a valid recording on its own: it is sealed with its end record
+    /// and checksum). Errors: as gyro_world_record_size, INVALID_COUNT (capacity below the size;
+    /// nothing written).
     pub fn gyro_world_record_copy(world: *const gyro_world, buffer: *mut c_void, capacity: u64, out_size: *mut u64) -> gyro_status;
 
     /// Writes the recording so far to a file. Errors: as above, INVALID_ARGUMENT (cannot write).
@@ -1350,10 +1354,15 @@ extern "C" {
     pub fn gyro_world_record_end(world: *mut gyro_world) -> gyro_status;
 
     /// Replays a recording held in memory; out->struct_size must be set. A divergence is a result
-    /// (GYRO_OK, diverged = 1), not an error. Errors: NULL_ARGUMENT, INVALID_ARGUMENT (struct_size),
-    /// CORRUPT_DATA (truncated, bad checksum, unknown call, another version).
+    /// (GYRO_OK, diverged = 1), not an error: a step whose hash differs (first_divergent_step is
+    /// that step, with both hashes), or a call that fails on replay or returns another id than it
+    /// did when recorded (first_divergent_step is the next step, both hashes 0). Replay goes on to
+    /// the end, so the counts and final_hash cover the whole recording. Errors (*out untouched):
+    /// NULL_ARGUMENT, INVALID_ARGUMENT (struct_size), CORRUPT_DATA (truncated, bad checksum,
+    /// unknown call, bad geometry, another format version, a start snapshot that does not load).
     pub fn gyro_replay(data: *const c_void, size: u64, out: *mut gyro_replay_report) -> gyro_status;
 
-    /// Replays a recording file (see gyro_world_record_save).
+    /// Replays a recording file (see gyro_world_record_save). Errors: as gyro_replay,
+    /// INVALID_ARGUMENT (the file cannot be read, or is over 1 GiB).
     pub fn gyro_replay_file(path: *const c_char, out: *mut gyro_replay_report) -> gyro_status;
 }
