@@ -21,7 +21,7 @@ build: deps
 	@cmake --build $(BUILD) -j$(JOBS) -- --no-print-directory
 
 demo: build
-	@./$(BUILD)/capi/examples/gyro-demo
+	@./$(BUILD)/capi/examples/gyro-demo $(BUILD)/demo
 
 # Everything CI runs.
 test: unit sanitize determinism

@@ -34,7 +34,7 @@ if grep -q 'x86-64' <<<"$("$objdump" -f "$lib")"; then
   fi
 fi
 
-exports=$("$nm" -D --defined-only "$lib" | awk '$2 ~ /[TDBR]/ { print $3 }' | grep -v '^gyro_' || true)
+exports=$("$nm" -D --defined-only "$lib" | awk '$2 ~ /[TDBRWVui]/ { print $3 }' | grep -v '^gyro_' || true)
 if [[ -n $exports ]]; then
   echo "FAIL: exported symbols other than gyro_*:"; head -20 <<<"$exports"; fail=1
 else
