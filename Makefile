@@ -41,6 +41,13 @@ sanitize: deps
 	@cmake --build build-asan -j$(JOBS)
 	ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
 	  ctest --test-dir build-asan --output-on-failure -j$(JOBS) -E '^(determinism\.matrix|objects\.|lint\.)'
+	@# The C ABI fuzz target (tests/fuzz): libFuzzer needs clang, so a second, small ASan+UBSan
+	@# build by clang++ of the library and the fuzz target only, and a bounded run (~45 s).
+	@cmake -S . -B build-fuzz -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Debug \
+	  -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g" -DGYRO_SANITIZE=address,undefined -DGYRO_BUILD_GTESTS=OFF \
+	  -DGYRO_BUILD_BENCH=OFF -DGYRO_BUILD_EXAMPLES=OFF -DGYRO_WERROR=ON $(CMAKE_ARGS) >/dev/null
+	@cmake --build build-fuzz -j$(JOBS) --target gyro-fuzz-capi
+	ctest --test-dir build-fuzz --output-on-failure -R '^fuzz\.'
 
 # The same golden hashes from g++, clang++ and aarch64 (cross-built, run under qemu-user).
 determinism: build
@@ -59,4 +66,4 @@ install: build
 	cmake --install $(BUILD) --prefix $(PREFIX)
 
 clean:
-	rm -rf build build-asan build-clang build-aarch64
+	rm -rf build build-asan build-clang build-aarch64 build-fuzz

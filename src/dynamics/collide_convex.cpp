@@ -148,6 +148,8 @@ struct ClipPoint {
 // edge they cut), 10 bits: feature ids need only be equal for the same configuration.
 int clip(const ClipPoint* in, int n, bool closed, const vec3& side, const vec3& origin, uint32_t side_code,
          ClipPoint* out) {
+  // A segment clipped away by the first side plane leaves nothing for the second.
+  if (n <= 0) return 0;
   int m = 0;
   const int edges = closed ? n : n - 1;
   float dist[kMaxPoly + 8];

@@ -136,10 +136,11 @@ class Builder {
     return index;
   }
 
+  // Clamped as a float before the conversion: a float past INT_MAX (or NaN) has no int.
   int bin_of(float c, float lo, float scale) const {
     const float f = (c - lo) * scale;
-    const int b = f >= 0.0f ? int(f) : 0;
-    return b < kBins ? b : kBins - 1;
+    if (!(f >= 0.0f)) return 0;
+    return f < float(kBins) ? int(f) : kBins - 1;
   }
 
   // Binned SAH: the best plane between bins on any axis; returns the left count (0 if none).
@@ -151,6 +152,8 @@ class Builder {
       const float ext = cbox.hi[axis] - cbox.lo[axis];
       lo[axis] = cbox.lo[axis];
       scale[axis] = ext > 0.0f ? float(kBins) / ext : 0.0f;  // 0: a flat axis, all in bin 0
+      // A subnormal extent overflows the scale: as good as flat, left to the median split.
+      if (!(scale[axis] < kInf)) scale[axis] = 0.0f;
     }
     Box bin_box[3][kBins];
     uint32_t bin_count[3][kBins] = {};

@@ -850,5 +850,25 @@ TEST(TriangleMeshOverlapping, ClosedBoundsAndEdgeCases) {
   EXPECT_EQ(TriangleMesh{}.triangles_overlapping(AABB{{0, 0, 0}, {1, 1, 1}}, out, 64), 0u);
 }
 
+// Two parallel capsules side by side where b's segment lies wholly past one end of a's: the
+// clip against a's span leaves nothing (the first plane once left an empty segment that the
+// second read at index -1, found by the C ABI fuzzer). EPA's single point remains, at the
+// true depth; both ends, so either clipping plane empties it first.
+TEST(ConvexManifold, ParallelCapsulesPastTheEndOfEachOtherGiveOnePoint) {
+  ConvexCollider a, b;
+  ASSERT_EQ(make_capsule(0.5f, 1.0f, a.shape), Status::ok);  // segment y in [-1, 1]
+  ASSERT_EQ(make_capsule(0.5f, 0.5f, b.shape), Status::ok);
+  for (const float side : {-1.0f, 1.0f}) {
+    b.pose.position = {0.9f, side * 1.51f, 0.0f};  // segment y in [1.01, 2.01] times side
+    Manifold m;
+    collide_convex_shapes(a, b, 0.02f, &m);
+    ASSERT_EQ(m.count, 1u) << side;
+    const float gap = std::sqrt(0.9f * 0.9f + 0.01f * 0.01f);
+    EXPECT_NEAR(m.points[0].separation, gap - 1.0f, 1e-4f) << side;
+    EXPECT_NEAR(m.normal.x, 0.9f / gap, 1e-3f) << side;
+    EXPECT_NEAR(m.normal.y, side * 0.01f / gap, 1e-3f) << side;
+  }
+}
+
 }  // namespace
 }  // namespace gyro::detail

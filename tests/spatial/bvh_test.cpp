@@ -99,5 +99,20 @@ TEST(Bvh, CoincidentCentroidsStillSplitAndStayShallow) {
   EXPECT_LE(detail::build_bvh8(m).stats.max_depth, 40u);
 }
 
+// Centroids that differ by a subnormal amount on one axis: kBins / extent overflows to
+// infinity there, which once turned into an int bin index far outside the bins (a crash
+// the C ABI fuzzer found). That axis now counts as flat; the others still split.
+TEST(Bvh, SubnormalCentroidSpreadStillBuilds) {
+  SplitMix64 rng(11);
+  MeshData m;
+  for (uint32_t t = 0; t < 300; ++t) {
+    const float x = t % 2 ? 4e-39f : 0.0f;
+    for (int k = 0; k < 3; ++k) m.add_vertex({x, float(20 * rng.u()), float(20 * rng.u())});
+    m.add_triangle(3 * t, 3 * t + 1, 3 * t + 2);
+  }
+  check_mesh(m);
+  EXPECT_LE(detail::build_bvh8(m).stats.max_depth, 12u);
+}
+
 }  // namespace
 }  // namespace gyro
