@@ -128,7 +128,7 @@ struct ModelInfo {
 
 /// Which top-level structure a scene builds over its models.
 enum class SceneAccel : uint32_t {
-  /// Binned-SAH 4-wide BVH over the models' bounds. The default: on 1000 to 4000 models it
+  /// Binned-SAH 8-wide BVH over the models' bounds. The default: on 1000 to 4000 models it
   /// builds about as fast and answers rays about 2 to 5 times and frustum queries 1.7 to 4
   /// times faster than the octree (SceneBench in tests/spatial/scene_test.cpp).
   bvh = 0,
@@ -149,10 +149,10 @@ struct SceneStats {
   std::size_t models = 0;              ///< live models
   std::size_t tree_models = 0;  ///< models in the tree (not planes, not unplaced)
   std::size_t planes = 0;       ///< placed plane models (tested by every ray)
-  std::size_t nodes = 0;        ///< 4-wide BVH nodes, or octree nodes (leaves included)
+  std::size_t nodes = 0;        ///< 8-wide BVH nodes, or octree nodes (leaves included)
   std::size_t leaves = 0;       ///< BVH leaf blocks, or octree leaves
   std::size_t references = 0;   ///< model entries over all leaves (octree: >= tree_models)
-  std::size_t max_depth = 0;    ///< of the structure (BVH: in 4-wide nodes, root = 1; octree: root = 0)
+  std::size_t max_depth = 0;    ///< of the structure (BVH: in 8-wide nodes, root = 1; octree: root = 0)
   std::size_t bytes = 0;        ///< structure and per-model arrays
 };
 

@@ -1,8 +1,8 @@
 // The BVH over a triangle mesh: the layout the build writes and the kernels read.
 //
-// A mesh node has eight children (a scene node four) and holds their bounds as structure of
-// arrays (bounds[2 * axis + 0] the minima, bounds[2 * axis + 1] the maxima, one float per
-// child), so one 8-wide (4-wide) lane tests a ray against all of them at once. An unused
+// A node has eight children and holds their bounds as structure of arrays (bounds[2 * axis
+// + 0] the minima, bounds[2 * axis + 1] the maxima, one float per child), so one 8-wide
+// lane tests a ray against all of them at once. An unused
 // child slot has bounds (+inf, -inf), which no ray's slab test can enter. A child is another
 // node, a leaf block (kLeafBit set) or empty.
 //
@@ -10,7 +10,7 @@
 // one float per triangle) in leaf order, with each triangle's index in the input mesh;
 // unused lanes have NaN corners (no ray hits them) and index kNoTriangle.
 //
-// The same builder also makes a BVH over arbitrary boxes (BoxBvh4: the scene's top level
+// The same builder also makes a BVH over arbitrary boxes (BoxBvh8: the scene's top level
 // over its models), with the same nodes and leaf blocks of up to four item indices.
 #pragma once
 
@@ -34,14 +34,8 @@ inline constexpr uint32_t kInvalidRay = 0xFFFFFFFEu;
 inline constexpr std::size_t kBvhMaxDepth = 64;
 inline constexpr std::size_t kBvhStackSize = 7 * kBvhMaxDepth + 8;
 
-// Cache-line aligned: a 4-wide node is exactly two lines, an 8-wide one four, a leaf three,
-// so a visit never touches a line it does not need.
-struct alignas(64) BvhNode4 {
-  float bounds[6][4];  ///< [2 * axis + (0: min, 1: max)][child]
-  uint32_t child[4];   ///< node index, kLeafBit | leaf block index, or kEmptyChild
-  uint32_t unused[4] = {};  ///< to the cache line, zeroed so the bytes are defined
-};
-
+// Cache-line aligned: an 8-wide node is exactly four lines, a leaf three, so a visit never
+// touches a line it does not need.
 struct alignas(64) BvhNode8 {
   float bounds[6][8];  ///< [2 * axis + (0: min, 1: max)][child]
   uint32_t child[8];   ///< node index, kLeafBit | leaf block index, or kEmptyChild
@@ -66,15 +60,15 @@ struct alignas(16) BvhItems4 {
   uint32_t item[4];
 };
 
-/// A BVH over boxes: nodes as Bvh4's, leaves holding item indices (the input order).
-struct BoxBvh4 {
-  std::vector<BvhNode4> nodes;  ///< nodes[0] is the root (all slots empty when there are no boxes)
+/// A BVH over boxes: nodes as Bvh8's, leaves holding item indices (the input order).
+struct BoxBvh8 {
+  std::vector<BvhNode8> nodes;  ///< nodes[0] is the root (all slots empty when there are no boxes)
   std::vector<BvhItems4> leaves;
   AABB bounds;
   BvhStats stats;
 };
 
-/// An item's box for build_box_bvh4: finite corners with lo <= hi on every axis.
+/// An item's box for build_box_bvh8: finite corners with lo <= hi on every axis.
 struct BvhBox {
   float lo[3];
   float hi[3];
@@ -86,6 +80,6 @@ Bvh8 build_bvh8(const MeshData& mesh);
 
 /// Builds a BVH over boxes[0..count) with the same binned SAH and collapse (a box's
 /// centroid is the middle of its corners). Deterministic: depends only on the values.
-BoxBvh4 build_box_bvh4(const BvhBox* boxes, std::size_t count);
+BoxBvh8 build_box_bvh8(const BvhBox* boxes, std::size_t count);
 
 }  // namespace gyro::detail

@@ -1,8 +1,8 @@
 // BVH construction: a binary tree by binned SAH (Wald, "On fast construction of SAH-based
 // bounding volume hierarchies", 2007) over the triangles' bounding-box centroids, then
-// collapsed into 8-wide nodes (4-wide for the scene's boxes) by repeatedly opening the
-// child with the largest surface area (the usual BVH2-to-BVHn collapse), with triangles
-// packed into 4-wide leaf blocks.
+// collapsed into 8-wide nodes by repeatedly opening the child with the largest surface area
+// (the usual BVH2-to-BVHn collapse), with triangles (or a scene's items) packed into 4-wide
+// leaf blocks.
 //
 // Determinism: every decision is a function of float values and indices only (ties go to
 // the lower axis, the lower bin, the earlier child); partitions are stable and the median
@@ -78,7 +78,7 @@ class Builder {
     }
   }
 
-  // Out is Bvh8 or BoxBvh4; leaf(out, b) appends binary leaf b's block and returns its code.
+  // Out is Bvh8 or BoxBvh8; leaf(out, b) appends binary leaf b's block and returns its code.
   template <class Out, class Leaf> Out run(Leaf&& leaf) {
     const uint32_t root = build(0, uint32_t(order_.size()), 0);
     Out out;
@@ -283,7 +283,7 @@ struct MeshLeaf {
   }
 };
 
-uint32_t box_leaf(BoxBvh4& out, const uint32_t* items, uint32_t count) {
+uint32_t box_leaf(BoxBvh8& out, const uint32_t* items, uint32_t count) {
   BvhItems4 leaf;
   for (uint32_t k = 0; k < 4; ++k) leaf.item[k] = k < count ? items[k] : kNoItem;
   out.leaves.push_back(leaf);
@@ -304,13 +304,13 @@ Bvh8 build_bvh8(const MeshData& mesh) {
   return Builder(std::move(prims)).run<Bvh8>(MeshLeaf{mesh});
 }
 
-BoxBvh4 build_box_bvh4(const BvhBox* boxes, std::size_t count) {
+BoxBvh8 build_box_bvh8(const BvhBox* boxes, std::size_t count) {
   if (count == 0) {
-    BoxBvh4 out;
-    out.nodes.push_back(empty_node<BvhNode4>());
+    BoxBvh8 out;
+    out.nodes.push_back(empty_node<BvhNode8>());
     out.bounds = AABB{{0.0f, 0.0f, 0.0f}, {0.0f, 0.0f, 0.0f}};
     out.stats.nodes = 1;
-    out.stats.bytes = sizeof(BvhNode4);
+    out.stats.bytes = sizeof(BvhNode8);
     return out;
   }
   std::vector<Box> prims(count);
@@ -318,7 +318,7 @@ BoxBvh4 build_box_bvh4(const BvhBox* boxes, std::size_t count) {
     prims[i].grow(boxes[i].lo);
     prims[i].grow(boxes[i].hi);
   }
-  return Builder(std::move(prims)).run<BoxBvh4>(box_leaf);
+  return Builder(std::move(prims)).run<BoxBvh8>(box_leaf);
 }
 
 }  // namespace gyro::detail

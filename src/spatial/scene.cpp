@@ -26,6 +26,7 @@
 #include "gyro/overlap.hpp"
 #include "gyro/raycast.hpp"
 #include "spatial/bvh.hpp"
+#include "spatial/scene_rays.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -227,7 +228,8 @@ struct Scene::Impl {
   std::vector<Placed> placed;    // by dense slot, valid once world_ready
   std::vector<uint32_t> tree_slots;   // tree item k -> slot, ascending id index
   std::vector<uint32_t> plane_slots;  // placed planes, ascending id index
-  detail::BoxBvh4 bvh;
+  detail::BoxBvh8 bvh;
+  std::vector<detail::SceneLeaf4> ray_leaves;  // bvh.leaves as the ray kernel reads them
   Octree octree;
   SceneAccel built = SceneAccel::bvh;
   std::mutex mutex;
@@ -276,7 +278,8 @@ struct Scene::Impl {
     std::sort(tree_slots.begin(), tree_slots.end(), by_index);
     std::sort(plane_slots.begin(), plane_slots.end(), by_index);
     built = settings.accel;
-    bvh = detail::BoxBvh4{};
+    bvh = detail::BoxBvh8{};
+    ray_leaves.clear();
     octree.clear();
     if (built == SceneAccel::bvh) {
       std::vector<detail::BvhBox> boxes(tree_slots.size());
@@ -284,13 +287,36 @@ struct Scene::Impl {
         const Placed& p = placed[tree_slots[k]];
         boxes[k] = {{p.lo[0], p.lo[1], p.lo[2]}, {p.hi[0], p.hi[1], p.hi[2]}};
       }
-      bvh = detail::build_box_bvh4(boxes.data(), boxes.size());
+      bvh = detail::build_box_bvh8(boxes.data(), boxes.size());
+      build_ray_leaves();
     } else {
       std::vector<AABB> boxes(tree_slots.size());
       std::vector<uint32_t> ids(tree_slots.size());
       for (std::size_t k = 0; k < tree_slots.size(); ++k) boxes[k] = placed[tree_slots[k]].bounds, ids[k] = uint32_t(k);
       // The boxes were checked finite when placed and the def when configured.
       if (octree.build(boxes.data(), ids.data(), boxes.size(), settings.octree) != Status::ok) octree.clear();
+    }
+  }
+
+  // Each leaf's spheres as lanes for the ray kernel; boxes and meshes go to the exact test.
+  void build_ray_leaves() {
+    ray_leaves.resize(bvh.leaves.size());
+    const float nan = __builtin_nanf("");
+    for (std::size_t l = 0; l < bvh.leaves.size(); ++l) {
+      detail::SceneLeaf4& r = ray_leaves[l];
+      r = detail::SceneLeaf4{};
+      for (int k = 0; k < 4; ++k) {
+        const uint32_t item = bvh.leaves[l].item[k];
+        r.item[k] = item;
+        r.key[k] = item == detail::kNoItem ? detail::kNoItem : placed[tree_slots[item]].index;
+        const Placed* p = item == detail::kNoItem ? nullptr : &placed[tree_slots[item]];
+        const bool sphere = p && p->shape == ModelShape::sphere;
+        r.sphere[0][k] = sphere ? p->sphere.center.x : nan;
+        r.sphere[1][k] = sphere ? p->sphere.center.y : nan;
+        r.sphere[2][k] = sphere ? p->sphere.center.z : nan;
+        r.sphere[3][k] = sphere ? p->sphere.radius : nan;
+        if (p && !sphere) r.exact_mask |= 1u << k;
+      }
     }
   }
 
@@ -330,8 +356,8 @@ struct Scene::Impl {
             if (item != detail::kNoItem) visit(tree_slots[item]);
           continue;
         }
-        const detail::BvhNode4& node = bvh.nodes[code];
-        for (int k = 3; k >= 0; --k) {
+        const detail::BvhNode8& node = bvh.nodes[code];
+        for (int k = 7; k >= 0; --k) {
           if (node.child[k] == detail::kEmptyChild) continue;
           const float lo[3] = {node.bounds[0][k], node.bounds[2][k], node.bounds[4][k]};
           const float hi[3] = {node.bounds[1][k], node.bounds[3][k], node.bounds[5][k]};
@@ -489,7 +515,7 @@ SceneStats Scene::stats() const {
   if (m.built == SceneAccel::bvh) {
     s.nodes = m.bvh.stats.nodes, s.leaves = m.bvh.stats.leaves, s.max_depth = m.bvh.stats.max_depth;
     s.references = m.tree_slots.size();
-    s.bytes = m.bvh.stats.bytes;
+    s.bytes = m.bvh.stats.bytes + m.ray_leaves.size() * sizeof(detail::SceneLeaf4);
   } else {
     const OctreeStats o = m.octree.stats();
     s.nodes = o.nodes, s.leaves = o.leaves, s.max_depth = o.max_depth, s.references = o.references, s.bytes = o.bytes;
@@ -499,6 +525,12 @@ SceneStats Scene::stats() const {
 }
 
 // ------------------------------------------------------------------------ raycasts
+//
+// Under the BVH, rays go in blocks: the planes here (scalar), the tree in the per-level
+// kernel of scene_kernels.cpp (spheres four at a time in lanes, boxes and meshes through
+// exact_t below, eight rays taking turns), then the winner's point, normal, triangle and
+// barycentrics here, computed once per ray. Under the octree, RayWalk walks it one ray at a
+// time. Both give the brute-force loop's bits (the header comment).
 
 namespace {
 
@@ -514,7 +546,7 @@ class RayWalk {
       : m_(m), ray_(ray), tmin_(tmin), tmax_(tmax), any_(any) {
     const float o[3] = {ray.origin.x, ray.origin.y, ray.origin.z};
     const float d[3] = {ray.direction.x, ray.direction.y, ray.direction.z};
-    const float pad = kRayPad * max_abs3(ray.origin);
+    const float pad = pad_of(ray);
     for (int a = 0; a < 3; ++a) {
       o_[a] = o[a];
       inv_[a] = 1.0f / d[a];
@@ -523,13 +555,59 @@ class RayWalk {
     }
   }
 
+  // How far a ray widens every box it tests.
+  static float pad_of(const Ray& ray) { return kRayPad * max_abs3(ray.origin); }
+
+  // Planes, then the octree (the BVH's rays go through the kernel).
   SceneHit run() {
+    planes();
+    if (any_ && found()) return best_;
+    if (!m_.tree_slots.empty()) walk_octree();
+    return best_;
+  }
+
+  // The planes' best (any hit: the first in id order).
+  const SceneHit& planes() {
     for (uint32_t s : m_.plane_slots) {
       test(s);
-      if (any_ && found()) return best_;
+      if (any_ && found()) break;
     }
-    if (!m_.tree_slots.empty()) m_.built == SceneAccel::bvh ? walk_bvh() : walk_octree();
     return best_;
+  }
+  float best_t() const { return best_t_; }
+  uint32_t best_index() const { return best_index_; }
+
+  // A box or mesh tree model for the kernel: its box entered by `limit`, then the exact
+  // test, a mesh's range cut to the best t so far (closest hit). +inf when not hit.
+  float exact_t(uint32_t slot, float best_t, float limit, SceneHit* out) const {
+    const Placed& p = m_.placed[slot];
+    if (!(enter(p.lo, p.hi, limit) < kInf)) return kInf;
+    *out = hit_of(slot, best_t < kInf && !any_ ? std::min(tmax_, best_t) : tmax_);
+    return out->hit.hit ? out->hit.t : kInf;
+  }
+
+  // The model's hit in [tmin, tmax] (a mesh's in [tmin, mesh_tmax]), with its details.
+  SceneHit hit_of(uint32_t slot, float mesh_tmax) const {
+    const Placed& p = m_.placed[slot];
+    SceneHit h;
+    switch (p.shape) {
+      case ModelShape::sphere: h.hit = raycast(p.sphere, ray_, tmin_, tmax_); break;
+      case ModelShape::box: h.hit = raycast(p.box, ray_, tmin_, tmax_); break;
+      case ModelShape::plane: h.hit = raycast(p.plane, ray_, tmin_, tmax_); break;
+      case ModelShape::mesh: {
+        const MeshHit mh = raycast(*p.mesh, to_local(p.world, ray_), tmin_, mesh_tmax);
+        if (!mh.hit.hit) return h;
+        h.hit.hit = true;
+        h.hit.t = mh.hit.t;
+        h.hit.point = ray_.origin + ray_.direction * mh.hit.t;
+        h.hit.normal = mh.hit.normal * p.rot;
+        h.primitive = mh.triangle;
+        h.u = mh.u, h.v = mh.v;
+        break;
+      }
+    }
+    if (h.hit.hit) h.model = id_of(m_.pool.id_at(slot));
+    return h;
   }
 
  private:
@@ -573,29 +651,9 @@ class RayWalk {
   }
 
   void test(uint32_t slot) {
-    const Placed& p = m_.placed[slot];
-    SceneHit h;
-    switch (p.shape) {
-      case ModelShape::sphere: h.hit = raycast(p.sphere, ray_, tmin_, tmax_); break;
-      case ModelShape::box: h.hit = raycast(p.box, ray_, tmin_, tmax_); break;
-      case ModelShape::plane: h.hit = raycast(p.plane, ray_, tmin_, tmax_); break;
-      case ModelShape::mesh: {
-        // A smaller tmax only drops triangles beyond the best hit, which cannot win.
-        const float tmax = found() && !any_ ? std::min(tmax_, best_t_) : tmax_;
-        const MeshHit mh = raycast(*p.mesh, to_local(p.world, ray_), tmin_, tmax);
-        if (!mh.hit.hit) return;
-        h.hit.hit = true;
-        h.hit.t = mh.hit.t;
-        h.hit.point = ray_.origin + ray_.direction * mh.hit.t;
-        h.hit.normal = mh.hit.normal * p.rot;
-        h.primitive = mh.triangle;
-        h.u = mh.u, h.v = mh.v;
-        break;
-      }
-    }
-    if (!h.hit.hit) return;
-    h.model = id_of(m_.pool.id_at(slot));
-    take(h.hit.t, p.index, h);
+    // A smaller tmax only drops triangles beyond the best hit, which cannot win.
+    const SceneHit h = hit_of(slot, found() && !any_ ? std::min(tmax_, best_t_) : tmax_);
+    if (h.hit.hit) take(h.hit.t, m_.placed[slot].index, h);
   }
 
   // Pushes the entered children (n of them) farthest first, so the nearest is popped next;
@@ -608,37 +666,6 @@ class RayWalk {
       hit[j] = e;
     }
     while (n > 0) stack[sp++] = hit[--n];
-  }
-
-  void walk_bvh() {
-    const detail::BoxBvh4& bvh = m_.bvh;
-    Entry stack[kStackSize];
-    int sp = 0;
-    stack[sp++] = {0, tmin_};
-    while (sp > 0) {
-      const Entry e = stack[--sp];
-      if (e.near > limit()) continue;
-      if (e.code & detail::kLeafBit) {
-        for (uint32_t item : bvh.leaves[e.code & ~detail::kLeafBit].item) {
-          if (item == detail::kNoItem) continue;
-          test_boxed(m_.tree_slots[item]);
-          if (any_ && found()) return;
-        }
-        continue;
-      }
-      const detail::BvhNode4& node = bvh.nodes[e.code];
-      Entry hit[4];
-      int n = 0;
-      const float lim = limit();
-      for (int k = 0; k < 4; ++k) {
-        if (node.child[k] == detail::kEmptyChild) continue;
-        const float lo[3] = {node.bounds[0][k], node.bounds[2][k], node.bounds[4][k]};
-        const float hi[3] = {node.bounds[1][k], node.bounds[3][k], node.bounds[5][k]};
-        const float t = enter(lo, hi, lim);
-        if (t < kInf) hit[n++] = {node.child[k], t};
-      }
-      push_sorted(hit, n, stack, sp);
-    }
   }
 
   void walk_octree() {
@@ -684,10 +711,99 @@ bool valid_ray(const Ray& ray, float tmin, float tmax) {
          tmin >= 0.0f && tmax >= tmin;
 }
 
+// Rays in a block: the kernel's per-ray state lives on the stack.
+constexpr std::size_t kBlock = 64;
+constexpr uint32_t kPlaneItem = 0xFFFFFFFEu;
+
+// A block of rays as the kernel's exact callback sees them, with the details of the hits
+// already computed: the planes' winner, then any box or mesh hit that was the best when
+// it was tested (item says which), so the winner's details are rarely computed twice.
+struct Block {
+  const Scene::Impl* m;
+  const RaysView* rays;
+  std::size_t begin;
+  bool any;
+  SceneHit cached[kBlock];
+  uint32_t cached_item[kBlock];
+
+  Ray ray(std::size_t k) const {
+    const std::size_t i = begin + k;
+    return {{rays->ox[i], rays->oy[i], rays->oz[i]}, {rays->dx[i], rays->dy[i], rays->dz[i]}};
+  }
+  float tmin(std::size_t k) const { return rays->tmin ? rays->tmin[begin + k] : 0.0f; }
+  float tmax(std::size_t k) const { return rays->tmax ? rays->tmax[begin + k] : kInf; }
+  RayWalk walker(std::size_t k) const { return RayWalk(*m, ray(k), tmin(k), tmax(k), any); }
+};
+
+float exact_t(void* ctx, std::size_t k, uint32_t item, float best_t, uint32_t best_key, float limit) {
+  Block& b = *static_cast<Block*>(ctx);
+  const uint32_t slot = b.m->tree_slots[item];
+  SceneHit h;
+  const float t = b.walker(k).exact_t(slot, best_t, limit, &h);
+  const uint32_t key = b.m->placed[slot].index;
+  if (t < best_t || (t == best_t && t < kInf && key < best_key)) b.cached[k] = h, b.cached_item[k] = item;
+  return t;
+}
+
+// Rays [begin, begin + n), n <= kBlock, of a prepared BVH scene into out[0, n).
+void trace_block(const Scene::Impl& m, const RaysView& rays, std::size_t begin, std::size_t n, bool any, SceneHit* out,
+                 bool* valid) {
+  Block b{&m, &rays, begin, any, {}, {}};
+  float best_t[kBlock], pad[kBlock];
+  uint32_t best_key[kBlock], best_item[kBlock];
+  uint8_t walk[kBlock];
+  for (std::size_t k = 0; k < n; ++k) {
+    const Ray ray = b.ray(k);
+    valid[k] = valid_ray(ray, b.tmin(k), b.tmax(k));
+    best_t[k] = kInf, best_key[k] = kNoIndex, best_item[k] = detail::kNoItem, pad[k] = 0.0f, walk[k] = 0;
+    b.cached_item[k] = detail::kNoItem;
+    if (!valid[k]) continue;
+    RayWalk w = b.walker(k);
+    if (!m.plane_slots.empty()) {
+      b.cached[k] = w.planes();
+      best_t[k] = w.best_t(), best_key[k] = w.best_index();
+      if (best_key[k] != kNoIndex) b.cached_item[k] = kPlaneItem;
+    }
+    pad[k] = RayWalk::pad_of(ray);
+    walk[k] = !m.tree_slots.empty() && !(any && best_key[k] != kNoIndex);
+  }
+  if (!m.tree_slots.empty()) {
+    const auto shift = [&](const float* p) { return p ? p + begin : nullptr; };
+    const SceneRaycastArgs args{m.bvh.nodes.data(), m.ray_leaves.data(), rays.ox + begin, rays.oy + begin,
+                                rays.oz + begin,    rays.dx + begin,      rays.dy + begin, rays.dz + begin,
+                                shift(rays.tmin),   shift(rays.tmax),     pad,             walk,
+                                any,                best_t,               best_key,        best_item,
+                                exact_t,            &b};
+    GYRO_DISPATCH(scene_raycast)(args, 0, n);
+  }
+  for (std::size_t k = 0; k < n; ++k) {
+    const uint32_t item = best_item[k];
+    if (item != detail::kNoItem) {
+      out[k] = b.cached_item[k] == item ? b.cached[k] : b.walker(k).hit_of(m.tree_slots[item], b.tmax(k));
+    } else {
+      out[k] = b.cached_item[k] == kPlaneItem ? b.cached[k] : SceneHit{};
+    }
+  }
+}
+
 SceneHit trace(const Scene& scene, const Ray& ray, float tmin, float tmax, bool any) {
   if (!valid_ray(ray, tmin, tmax)) return {};
   const Scene::Impl& m = *scene.impl();
-  return RayWalk(m, ray, tmin, tmax, any).run();
+  if (m.built != SceneAccel::bvh) return RayWalk(m, ray, tmin, tmax, any).run();
+  const RaysView view{&ray.origin.x, &ray.origin.y, &ray.origin.z, &ray.direction.x, &ray.direction.y,
+                      &ray.direction.z, &tmin, &tmax};
+  SceneHit h;
+  bool valid;
+  trace_block(m, view, 0, 1, any, &h, &valid);
+  return h;
+}
+
+void write_hit(const SceneHitsOut& hits, std::size_t i, const SceneHit& h, bool valid, bool normals) {
+  hits.t[i] = h.hit.hit ? h.hit.t : kInf;
+  hits.model[i] = h.model;
+  if (hits.primitive) hits.primitive[i] = h.hit.hit ? int32_t(h.primitive) : valid ? -1 : kRayInvalid;
+  if (normals) hits.nx[i] = h.hit.normal.x, hits.ny[i] = h.hit.normal.y, hits.nz[i] = h.hit.normal.z;
+  if (hits.u) hits.u[i] = h.u, hits.v[i] = h.v;
 }
 
 Status run_batch(const Scene& scene, const RaysView& rays, std::size_t n, const SceneHitsOut& hits, bool any) {
@@ -702,16 +818,21 @@ Status run_batch(const Scene& scene, const RaysView& rays, std::size_t n, const 
   scene.prepare();
   const Scene::Impl& m = *scene.impl();
   detail::parallel_for(n, kRayChunk, [&](std::size_t b, std::size_t e) {
+    if (m.built == SceneAccel::bvh) {
+      SceneHit out[kBlock];
+      bool valid[kBlock];
+      for (std::size_t s = b; s < e; s += kBlock) {
+        const std::size_t count = std::min(kBlock, e - s);
+        trace_block(m, rays, s, count, any, out, valid);
+        for (std::size_t k = 0; k < count; ++k) write_hit(hits, s + k, out[k], valid[k], normals);
+      }
+      return;
+    }
     for (std::size_t i = b; i < e; ++i) {
       const Ray ray{{rays.ox[i], rays.oy[i], rays.oz[i]}, {rays.dx[i], rays.dy[i], rays.dz[i]}};
       const float tmin = rays.tmin ? rays.tmin[i] : 0.0f, tmax = rays.tmax ? rays.tmax[i] : kInf;
       const bool valid = valid_ray(ray, tmin, tmax);
-      const SceneHit h = valid ? RayWalk(m, ray, tmin, tmax, any).run() : SceneHit{};
-      hits.t[i] = h.hit.hit ? h.hit.t : kInf;
-      hits.model[i] = h.model;
-      if (hits.primitive) hits.primitive[i] = h.hit.hit ? int32_t(h.primitive) : valid ? -1 : kRayInvalid;
-      if (normals) hits.nx[i] = h.hit.normal.x, hits.ny[i] = h.hit.normal.y, hits.nz[i] = h.hit.normal.z;
-      if (hits.u) hits.u[i] = h.u, hits.v[i] = h.v;
+      write_hit(hits, i, valid ? RayWalk(m, ray, tmin, tmax, any).run() : SceneHit{}, valid, normals);
     }
   });
   return Status::ok;

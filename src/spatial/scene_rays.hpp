@@ -1,0 +1,52 @@
+// The scene raycast kernel: rays through the scene's 8-wide BVH over its models (a node's
+// eight child boxes in one 8-wide lane), a leaf's sphere models tested in one 4-wide lane,
+// its other models (boxes, meshes) through the scene's exact test. Closest or any hit.
+#pragma once
+
+#include "core/dispatch.hpp"
+#include "spatial/bvh.hpp"
+
+#include <cstddef>
+#include <cstdint>
+
+namespace gyro {
+namespace detail {
+
+/// A scene leaf block as the ray kernel reads it, built next to the BVH's BvhItems4.
+struct alignas(64) SceneLeaf4 {
+  float sphere[4][4];   ///< cx, cy, cz, r per lane; r is NaN where the item is not a sphere (no ray hits it)
+  uint32_t key[4];      ///< the model's id index (the tie-break), kNoItem where there is no item
+  uint32_t item[4];     ///< the tree item, kNoItem where there is none
+  uint32_t exact_mask;  ///< bit k: lane k is a model the exact callback tests (a box or a mesh)
+  uint32_t unused[7] = {};  ///< to the cache line, zeroed so the bytes are defined
+};
+
+}  // namespace detail
+
+/// The exact t of tree item `item` for ray `ray` (the index into the arrays), +inf when it
+/// is not hit in [tmin, tmax] or its box is not entered by `limit`. best_t and best_key are
+/// the ray's best so far (the callback may cache the details of a hit that beats them).
+using scene_exact_fn = float(void* ctx, std::size_t ray, uint32_t item, float best_t, uint32_t best_key, float limit);
+
+struct SceneRaycastArgs {
+  const detail::BvhNode8* nodes;  ///< nodes[0] is the root
+  const detail::SceneLeaf4* leaves;
+  const float *ox, *oy, *oz, *dx, *dy, *dz;
+  const float* tmin;      ///< null: 0
+  const float* tmax;      ///< null: +inf
+  const float* pad;       ///< per ray: how far every box is widened (the scene's ray pad)
+  const uint8_t* walk;    ///< per ray: 0 = leave it (invalid, or already answered)
+  bool any_hit;
+  /// In: the best hit before the tree (the planes'); out: the best over planes and tree.
+  float* best_t;          ///< +inf: none
+  uint32_t* best_key;     ///< the winner's id index
+  uint32_t* best_item;    ///< the winning tree item; untouched when no tree model wins
+  scene_exact_fn* exact;
+  void* ctx;
+};
+
+/// Rays [begin, end).
+using scene_raycast_fn = void(const SceneRaycastArgs&, std::size_t begin, std::size_t end);
+GYRO_KERNEL(scene_raycast, scene_raycast_fn)
+
+}  // namespace gyro
