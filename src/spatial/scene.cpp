@@ -47,6 +47,7 @@ constexpr float kRayPad = 0x1p-17f;
 constexpr float kSlabSlack = 0x1p-18f;
 constexpr float kBestSlack = 0x1p-16f;
 constexpr float kTinyPad = 1e-30f;
+constexpr std::size_t kTurnsBytes = std::size_t(1) << 20;  // about a core's L2 cache
 constexpr uint32_t kNoIndex = 0xFFFFFFFFu;
 // Entries on a traversal stack: a node pushes at most 7 siblings per level.
 constexpr std::size_t kStackSize = 8 * (detail::kBvhMaxDepth + 2);
@@ -230,6 +231,7 @@ struct Scene::Impl {
   std::vector<uint32_t> plane_slots;  // placed planes, ascending id index
   detail::BoxBvh8 bvh;
   std::vector<detail::SceneLeaf4> ray_leaves;  // bvh.leaves as the ray kernel reads them
+  bool rays_in_turns = false;                  // the tree outgrows a core's L2 cache
   Octree octree;
   SceneAccel built = SceneAccel::bvh;
   std::mutex mutex;
@@ -280,6 +282,7 @@ struct Scene::Impl {
     built = settings.accel;
     bvh = detail::BoxBvh8{};
     ray_leaves.clear();
+    rays_in_turns = false;
     octree.clear();
     if (built == SceneAccel::bvh) {
       std::vector<detail::BvhBox> boxes(tree_slots.size());
@@ -289,6 +292,10 @@ struct Scene::Impl {
       }
       bvh = detail::build_box_bvh8(boxes.data(), boxes.size());
       build_ray_leaves();
+      // Measured on R1's spheres (1 thread): at 10^4 models (0.4 MB of tree) one ray at a
+      // time is up to 20% faster, at 10^5 (4 MB) and 10^6 eight rays in turns are 30% faster.
+      rays_in_turns = bvh.nodes.size() * sizeof(detail::BvhNode8) + ray_leaves.size() * sizeof(detail::SceneLeaf4) >
+                      kTurnsBytes;
     } else {
       std::vector<AABB> boxes(tree_slots.size());
       std::vector<uint32_t> ids(tree_slots.size());
@@ -772,8 +779,8 @@ void trace_block(const Scene::Impl& m, const RaysView& rays, std::size_t begin, 
     const SceneRaycastArgs args{m.bvh.nodes.data(), m.ray_leaves.data(), rays.ox + begin, rays.oy + begin,
                                 rays.oz + begin,    rays.dx + begin,      rays.dy + begin, rays.dz + begin,
                                 shift(rays.tmin),   shift(rays.tmax),     pad,             walk,
-                                any,                best_t,               best_key,        best_item,
-                                exact_t,            &b};
+                                any,                m.rays_in_turns,      best_t,          best_key,
+                                best_item,          exact_t,              &b};
     GYRO_DISPATCH(scene_raycast)(args, 0, n);
   }
   for (std::size_t k = 0; k < n; ++k) {

@@ -1,9 +1,9 @@
 // scene_raycast at this translation unit's SIMD level: the walk of scene.cpp's RayWalk over
 // the models' 8-wide BVH, with a node's eight child boxes tested in one 8-wide lane (Oct), a
 // leaf's sphere models in one 4-wide lane (Quad, ray_sphere_t: the scalar raycast's
-// expressions, so its bits), and eight rays from different origins taking turns, one visit
-// each, so that each one's next node arrives from memory while the others work (as the mesh
-// kernel, bvh_kernels.cpp, does).
+// expressions, so its bits), and, in a tree too large for the cache, eight rays from
+// different origins taking turns, one visit each, so that each one's next node arrives from
+// memory while the others work (as the mesh kernel, bvh_kernels.cpp, does).
 //
 // Exactness (scene.cpp's header): boxes are widened by the ray's pad, a box whose exit
 // precedes its entry by up to 2^-18 of the exit still counts as entered, a NaN slab product
@@ -169,7 +169,8 @@ template <bool AnyHit> inline bool step(const SceneRaycastArgs& a, Walk& w) {
 }
 
 // Rays from one origin (a camera, a lidar) walk nearly the same nodes one after another:
-// for them taking turns would only cost mispredicted branches.
+// for them taking turns would only cost mispredicted branches (as for a tree the cache
+// holds: SceneRaycastArgs::in_turns).
 inline bool one_origin(const SceneRaycastArgs& a, std::size_t begin, std::size_t end) {
   for (std::size_t i = begin + 1; i < end; ++i)
     if (a.ox[i] != a.ox[begin] || a.oy[i] != a.oy[begin] || a.oz[i] != a.oz[begin]) return false;
@@ -190,7 +191,7 @@ template <bool AnyHit> void run(const SceneRaycastArgs& a, std::size_t begin, st
     }
     return false;
   };
-  const int in_flight = one_origin(a, begin, end) ? 1 : kInFlight;
+  const int in_flight = a.in_turns && !one_origin(a, begin, end) ? kInFlight : 1;
   for (int k = 0; k < in_flight; ++k)
     if (refill(walks[k])) live[n++] = k;
   while (n > 0) {

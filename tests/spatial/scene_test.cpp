@@ -341,6 +341,35 @@ TEST(Scene, RaycastsEqualBruteForceInBothModes) {
   EXPECT_LT(hits, rays.set.size());
 }
 
+// The BVH kernel walks a tree larger than a core's L2 cache (about 1 MiB of nodes and
+// leaves) with eight rays taking turns, a smaller one a ray at a time (every other test
+// here): both must give the octree's scalar walk, bit for bit, at every level and thread count.
+TEST(Scene, LargeSceneRaysInTurnsEqualTheScalarWalk) {
+  TestScene s(40000, 41, 250.0f);
+  const Rays rays = make_rays(snapshot(s.scene), 3000, 42);
+  const std::size_t n = rays.set.size();
+  SceneSettings settings;
+  settings.accel = SceneAccel::octree;
+  ASSERT_EQ(s.scene.configure(settings), Status::ok);
+  std::vector<SceneHit> expect(n);
+  std::size_t hits = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    expect[i] = raycast(s.scene, rays.ray(i), rays.tmin[i], rays.tmax[i]);
+    hits += expect[i].hit.hit;
+  }
+  EXPECT_GT(hits, n / 4);
+  ASSERT_EQ(s.scene.configure(SceneSettings{}), Status::ok);
+  const SceneStats st = s.scene.stats();
+  EXPECT_GT(st.nodes * 256 + st.leaves * 128, std::size_t(1) << 20);  // BvhNode8, SceneLeaf4
+  for (const SimdLevel level : testing::available_levels())
+    for (const uint32_t threads : {1u, 2u}) {
+      ScopedExecution exec(level, threads);
+      Columns c(n);
+      ASSERT_EQ(raycast_closest(s.scene, rays.view(), n, c.out()), Status::ok);
+      for (std::size_t i = 0; i < n; ++i) expect_batch_matches(c, expect, rays, i);
+    }
+}
+
 TEST(Scene, RaycastsStayExactAfterRemovesMovesAndReparenting) {
   TestScene s(260, 31);
   SplitMix64 rng(32);
