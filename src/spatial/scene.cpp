@@ -231,6 +231,7 @@ struct Scene::Impl {
   std::vector<uint32_t> plane_slots;  // placed planes, ascending id index
   detail::BoxBvh8 bvh;
   std::vector<detail::SceneLeaf4> ray_leaves;  // bvh.leaves as the ray kernel reads them
+  std::vector<detail::SceneBoxes4> ray_boxes;  // their box models, for leaves with any
   bool rays_in_turns = false;                  // the tree outgrows a core's L2 cache
   Octree octree;
   SceneAccel built = SceneAccel::bvh;
@@ -282,6 +283,7 @@ struct Scene::Impl {
     built = settings.accel;
     bvh = detail::BoxBvh8{};
     ray_leaves.clear();
+    ray_boxes.clear();
     rays_in_turns = false;
     octree.clear();
     if (built == SceneAccel::bvh) {
@@ -294,7 +296,8 @@ struct Scene::Impl {
       build_ray_leaves();
       // Measured on R1's spheres (1 thread): at 10^4 models (0.4 MB of tree) one ray at a
       // time is up to 20% faster, at 10^5 (4 MB) and 10^6 eight rays in turns are 30% faster.
-      rays_in_turns = bvh.nodes.size() * sizeof(detail::BvhNode8) + ray_leaves.size() * sizeof(detail::SceneLeaf4) >
+      rays_in_turns = bvh.nodes.size() * sizeof(detail::BvhNode8) + ray_leaves.size() * sizeof(detail::SceneLeaf4) +
+                          ray_boxes.size() * sizeof(detail::SceneBoxes4) >
                       kTurnsBytes;
     } else {
       std::vector<AABB> boxes(tree_slots.size());
@@ -305,13 +308,16 @@ struct Scene::Impl {
     }
   }
 
-  // Each leaf's spheres as lanes for the ray kernel; boxes and meshes go to the exact test.
+  // Each leaf's spheres and boxes as lanes for the ray kernel; meshes go to the exact test.
   void build_ray_leaves() {
     ray_leaves.resize(bvh.leaves.size());
     const float nan = __builtin_nanf("");
     for (std::size_t l = 0; l < bvh.leaves.size(); ++l) {
       detail::SceneLeaf4& r = ray_leaves[l];
       r = detail::SceneLeaf4{};
+      r.box_block = detail::kNoItem;
+      detail::SceneBoxes4 boxes;
+      boxes.mask = 0;
       for (int k = 0; k < 4; ++k) {
         const uint32_t item = bvh.leaves[l].item[k];
         r.item[k] = item;
@@ -322,7 +328,24 @@ struct Scene::Impl {
         r.sphere[1][k] = sphere ? p->sphere.center.y : nan;
         r.sphere[2][k] = sphere ? p->sphere.center.z : nan;
         r.sphere[3][k] = sphere ? p->sphere.radius : nan;
-        if (p && !sphere) r.exact_mask |= 1u << k;
+        if (p && p->shape == ModelShape::box) {
+          const OBB& b = p->box;
+          const mat3& o = b.orientation;
+          const float v[15] = {b.center.x, b.center.y, b.center.z, b.half_extents.x, b.half_extents.y,
+                               b.half_extents.z, o.m[0][0], o.m[0][1], o.m[0][2], o.m[1][0], o.m[1][1],
+                               o.m[1][2], o.m[2][0], o.m[2][1], o.m[2][2]};
+          // The first box fills every lane (a valid box, so no lane computes on garbage);
+          // later boxes take their own.
+          for (int j = boxes.mask ? k : 0; j < 4; ++j)
+            for (int row = 0; row < 15; ++row) boxes.obb[row][j] = v[row];
+          boxes.mask |= 1u << k;
+        } else if (p && !sphere) {
+          r.exact_mask |= 1u << k;
+        }
+      }
+      if (boxes.mask) {
+        r.box_block = uint32_t(ray_boxes.size());
+        ray_boxes.push_back(boxes);
       }
     }
   }
@@ -522,7 +545,8 @@ SceneStats Scene::stats() const {
   if (m.built == SceneAccel::bvh) {
     s.nodes = m.bvh.stats.nodes, s.leaves = m.bvh.stats.leaves, s.max_depth = m.bvh.stats.max_depth;
     s.references = m.tree_slots.size();
-    s.bytes = m.bvh.stats.bytes + m.ray_leaves.size() * sizeof(detail::SceneLeaf4);
+    s.bytes = m.bvh.stats.bytes + m.ray_leaves.size() * sizeof(detail::SceneLeaf4) +
+              m.ray_boxes.size() * sizeof(detail::SceneBoxes4);
   } else {
     const OctreeStats o = m.octree.stats();
     s.nodes = o.nodes, s.leaves = o.leaves, s.max_depth = o.max_depth, s.references = o.references, s.bytes = o.bytes;
@@ -534,9 +558,9 @@ SceneStats Scene::stats() const {
 // ------------------------------------------------------------------------ raycasts
 //
 // Under the BVH, rays go in blocks: the planes here (scalar), the tree in the per-level
-// kernel of scene_kernels.cpp (spheres four at a time in lanes, boxes and meshes through
-// exact_t below, eight rays taking turns), then the winner's point, normal, triangle and
-// barycentrics here, computed once per ray. Under the octree, RayWalk walks it one ray at a
+// kernel of scene_kernels.cpp (spheres and boxes four at a time in lanes, meshes through
+// exact_t below, eight rays taking turns in a large tree), then the winner's point, normal,
+// triangle and barycentrics here, computed once per ray. Under the octree, RayWalk walks it one ray at a
 // time. Both give the brute-force loop's bits (the header comment).
 
 namespace {
@@ -584,7 +608,7 @@ class RayWalk {
   float best_t() const { return best_t_; }
   uint32_t best_index() const { return best_index_; }
 
-  // A box or mesh tree model for the kernel: its box entered by `limit`, then the exact
+  // A mesh tree model for the kernel: its box entered by `limit`, then the exact
   // test, a mesh's range cut to the best t so far (closest hit). +inf when not hit.
   float exact_t(uint32_t slot, float best_t, float limit, SceneHit* out) const {
     const Placed& p = m_.placed[slot];
@@ -723,7 +747,7 @@ constexpr std::size_t kBlock = 64;
 constexpr uint32_t kPlaneItem = 0xFFFFFFFEu;
 
 // A block of rays as the kernel's exact callback sees them, with the details of the hits
-// already computed: the planes' winner, then any box or mesh hit that was the best when
+// already computed: the planes' winner, then any mesh hit that was the best when
 // it was tested (item says which), so the winner's details are rarely computed twice.
 struct Block {
   const Scene::Impl* m;
@@ -776,7 +800,7 @@ void trace_block(const Scene::Impl& m, const RaysView& rays, std::size_t begin, 
   }
   if (!m.tree_slots.empty()) {
     const auto shift = [&](const float* p) { return p ? p + begin : nullptr; };
-    const SceneRaycastArgs args{m.bvh.nodes.data(), m.ray_leaves.data(), rays.ox + begin, rays.oy + begin,
+    const SceneRaycastArgs args{m.bvh.nodes.data(), m.ray_leaves.data(), m.ray_boxes.data(), rays.ox + begin, rays.oy + begin,
                                 rays.oz + begin,    rays.dx + begin,      rays.dy + begin, rays.dz + begin,
                                 shift(rays.tmin),   shift(rays.tmax),     pad,             walk,
                                 any,                m.rays_in_turns,      best_t,          best_key,

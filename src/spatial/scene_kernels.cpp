@@ -1,9 +1,10 @@
 // scene_raycast at this translation unit's SIMD level: the walk of scene.cpp's RayWalk over
 // the models' 8-wide BVH, with a node's eight child boxes tested in one 8-wide lane (Oct), a
-// leaf's sphere models in one 4-wide lane (Quad, ray_sphere_t: the scalar raycast's
-// expressions, so its bits), and, in a tree too large for the cache, eight rays from
-// different origins taking turns, one visit each, so that each one's next node arrives from
-// memory while the others work (as the mesh kernel, bvh_kernels.cpp, does).
+// leaf's sphere models in one 4-wide lane and its box models in another (Quad, ray_sphere_t
+// and ray_obb_t: the scalar raycasts' expressions, so their bits), and, in a tree too large
+// for the cache, eight rays from different origins taking turns, one visit each, so that
+// each one's next node arrives from memory while the others work (as the mesh kernel,
+// bvh_kernels.cpp, does).
 //
 // Exactness (scene.cpp's header): boxes are widened by the ray's pad, a box whose exit
 // precedes its entry by up to 2^-18 of the exit still counts as entered, a NaN slab product
@@ -99,6 +100,18 @@ inline bool take(Walk& w, float t, uint32_t key, uint32_t item) {
   return false;
 }
 
+// Pops the next entry entered within the limit; false when the walk is over.
+inline bool next_entry(const SceneRaycastArgs& a, Walk& w) {
+  while (w.sp > 0) {
+    const Entry p = w.stack[--w.sp];
+    if (p.near > w.limit) continue;
+    w.next = p;
+    prefetch(a, p.code);
+    return true;
+  }
+  return false;
+}
+
 // Visits w.next and picks the one after it; false when the walk is over.
 template <bool AnyHit> inline bool step(const SceneRaycastArgs& a, Walk& w) {
   const Entry e = w.next;
@@ -107,10 +120,22 @@ template <bool AnyHit> inline bool step(const SceneRaycastArgs& a, Walk& w) {
     const SphereL<Quad> s{{load<Quad>(leaf.sphere[0]), load<Quad>(leaf.sphere[1]), load<Quad>(leaf.sphere[2])},
                           load<Quad>(leaf.sphere[3])};
     const Quad t = ray_sphere_t(w.ray4, s, w.tmin4, w.tmax4);
-    const bool sphere_hit = any(t < Quad(kInf));
-    if (sphere_hit || leaf.exact_mask != 0) {
-      float ts[4];
-      store(ts, t);
+    bool lane_hit = any(t < Quad(kInf));
+    // Most leaves of spheres a ray enters it does not hit: nothing more to do there.
+    if (!lane_hit && leaf.box_block == detail::kNoItem && leaf.exact_mask == 0) return next_entry(a, w);
+    float ts[4];
+    store(ts, t);
+    if (leaf.box_block != detail::kNoItem) {
+      const detail::SceneBoxes4& bx = a.boxes[leaf.box_block];
+      const auto row = [&](int r) { return load<Quad>(bx.obb[r]); };
+      const auto v3 = [&](int r) { return V3<Quad>{row(r), row(r + 1), row(r + 2)}; };
+      const ObbL<Quad> b{v3(0), v3(3), {v3(6), v3(9), v3(12)}};
+      float tb[4];
+      store(tb, ray_obb_t(w.ray4, b, w.tmin4, w.tmax4));
+      for (int k = 0; k < 4; ++k)
+        if (bx.mask >> k & 1u) ts[k] = tb[k], lane_hit = lane_hit || tb[k] < kInf;
+    }
+    if (lane_hit || leaf.exact_mask != 0) {
       for (int k = 0; k < 4; ++k) {
         if (leaf.exact_mask >> k & 1u) {
           const float limit = limit_of(w, AnyHit);
@@ -158,14 +183,7 @@ template <bool AnyHit> inline bool step(const SceneRaycastArgs& a, Walk& w) {
       }
     }
   }
-  while (w.sp > 0) {
-    const Entry p = w.stack[--w.sp];
-    if (p.near > w.limit) continue;
-    w.next = p;
-    prefetch(a, p.code);
-    return true;
-  }
-  return false;
+  return next_entry(a, w);
 }
 
 // Rays from one origin (a camera, a lidar) walk nearly the same nodes one after another:

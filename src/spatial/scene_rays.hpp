@@ -1,6 +1,6 @@
 // The scene raycast kernel: rays through the scene's 8-wide BVH over its models (a node's
-// eight child boxes in one 8-wide lane), a leaf's sphere models tested in one 4-wide lane,
-// its other models (boxes, meshes) through the scene's exact test. Closest or any hit.
+// eight child boxes in one 8-wide lane), a leaf's sphere models and its box models each
+// tested in one 4-wide lane, its meshes through the scene's exact test. Closest or any hit.
 #pragma once
 
 #include "core/dispatch.hpp"
@@ -17,8 +17,17 @@ struct alignas(64) SceneLeaf4 {
   float sphere[4][4];   ///< cx, cy, cz, r per lane; r is NaN where the item is not a sphere (no ray hits it)
   uint32_t key[4];      ///< the model's id index (the tie-break), kNoItem where there is no item
   uint32_t item[4];     ///< the tree item, kNoItem where there is none
-  uint32_t exact_mask;  ///< bit k: lane k is a model the exact callback tests (a box or a mesh)
-  uint32_t unused[7] = {};  ///< to the cache line, zeroed so the bytes are defined
+  uint32_t exact_mask;  ///< bit k: lane k is a model the exact callback tests (a mesh)
+  uint32_t box_block;   ///< index of the leaf's SceneBoxes4, kNoItem when it has no box model
+  uint32_t unused[6] = {};  ///< to the cache line, zeroed so the bytes are defined
+};
+
+/// The box models of a leaf as lanes, for ray_obb_t: the OBB exactly as the scalar raycast
+/// reads it (centre, half extents, the orientation's rows), so the same bits.
+struct alignas(64) SceneBoxes4 {
+  float obb[15][4];  ///< cx, cy, cz, ex, ey, ez, u0 xyz, u1 xyz, u2 xyz per lane
+  uint32_t mask;     ///< bit k: lane k is a box model (the others repeat one of them, unused)
+  uint32_t unused[3] = {};
 };
 
 }  // namespace detail
@@ -31,6 +40,7 @@ using scene_exact_fn = float(void* ctx, std::size_t ray, uint32_t item, float be
 struct SceneRaycastArgs {
   const detail::BvhNode8* nodes;  ///< nodes[0] is the root
   const detail::SceneLeaf4* leaves;
+  const detail::SceneBoxes4* boxes;  ///< by SceneLeaf4::box_block
   const float *ox, *oy, *oz, *dx, *dy, *dz;
   const float* tmin;      ///< null: 0
   const float* tmax;      ///< null: +inf
