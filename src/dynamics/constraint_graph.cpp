@@ -42,6 +42,7 @@ void ConstraintGraph::color(const uint32_t* body_a, const uint32_t* body_b, std:
   remap.assign(ncolors, 0);
   plan.color_first.clear();
   plan.padded_first.clear();
+  plan.padded_end.clear();
   uint32_t first = 0, padded = 0, used = 0;
   for (uint32_t c = 0; c < ncolors; ++c) {
     if (counts_[c] == 0) continue;
@@ -49,11 +50,13 @@ void ConstraintGraph::color(const uint32_t* body_a, const uint32_t* body_b, std:
     plan.color_first.push_back(first);
     plan.padded_first.push_back(padded);
     first += counts_[c];
-    // Small colours are padded to 4 only: a kernel runs its widest lanes over whole batches
-    // and the float lane over the rest, with the same results, so padding a colour of 3 to 16
-    // would only add work.
+    // Small colours are visited up to a multiple of 4 only: a kernel runs its widest lanes
+    // over whole batches and the float lane over the rest, with the same results, so visiting
+    // 16 slots for a colour of 3 would only add work. The next colour still starts aligned
+    // (the fields are laid out in blocks of `align`).
     const std::size_t pad = counts_[c] >= 4 * align ? align : 4;
-    padded += uint32_t((counts_[c] + pad - 1) / pad * pad);
+    plan.padded_end.push_back(padded + uint32_t((counts_[c] + pad - 1) / pad * pad));
+    padded += uint32_t((counts_[c] + align - 1) / align * align);
   }
   plan.color_first.push_back(first);
   plan.padded_first.push_back(padded);

@@ -75,24 +75,22 @@ uint32_t ContactSolver::prepare(const BodyStore& s, const std::vector<ContactRec
       body_a_[slot] = cand_a_[i], body_b_[slot] = cand_b_[i], record_of_slot_[slot] = record_[i];
     }
   }
-  for (uint32_t f = 0; f < kConstraintFields; ++f) {
-    fields_[f].resize(slots, 0.0f);
-    field_ptrs_[f] = fields_[f].data();
-  }
+  fields_.resize(slots * kConstraintFields, 0.0f);  // slots is a multiple of kConstraintAlign
 
   // 3. Fields, in parallel over fixed chunks of slots (each slot writes only its own).
   const bool warm = def.enable_warm_starting;
   parallel_for(slots, 1024, [&](std::size_t begin, std::size_t end) {
+    float* const fields = fields_.data();
     for (std::size_t k = begin; k < end; ++k) {
-      float* const* f = field_ptrs_.data();
+      auto F = [&](uint32_t x) -> float& { return fields[field_index(x, k)]; };
       const uint32_t r = record_of_slot_[k];
       if (r == kNoRecord) {  // padding: an inert constraint (zero masses and impulses)
-        for (uint32_t x = 0; x < kConstraintFields; ++x) f[x][k] = 0.0f;
+        for (uint32_t x = 0; x < kConstraintFields; ++x) F(x) = 0.0f;
         continue;
       }
       const ContactRecord& rec = records[r];
       // Every field of a used slot is written below, except the points past the count.
-      for (uint32_t x = point_field(rec.manifold.count, 0); x < kConstraintFields; ++x) f[x][k] = 0.0f;
+      for (uint32_t x = point_field(rec.manifold.count, 0); x < kConstraintFields; ++x) F(x) = 0.0f;
       const uint32_t a = body_a_[k], b = body_b_[k];
       const float ma = sb.inv_mass[a], mb = sb.inv_mass[b];
       const float* ia = sb.inv_inertia + 6 * std::size_t(a);
@@ -100,11 +98,11 @@ uint32_t ContactSolver::prepare(const BodyStore& s, const std::vector<ContactRec
       const vec3 n = rec.manifold.normal;
       vec3 t1, t2;
       tangents(n, &t1, &t2);
-      f[kNx][k] = n.x, f[kNy][k] = n.y, f[kNz][k] = n.z;
-      f[kT1x][k] = t1.x, f[kT1y][k] = t1.y, f[kT1z][k] = t1.z;
-      f[kT2x][k] = t2.x, f[kT2y][k] = t2.y, f[kT2z][k] = t2.z;
-      f[kFriction][k] = rec.friction, f[kRestitution][k] = rec.restitution;
-      f[kMassA][k] = ma, f[kMassB][k] = mb;
+      F(kNx) = n.x, F(kNy) = n.y, F(kNz) = n.z;
+      F(kT1x) = t1.x, F(kT1y) = t1.y, F(kT1z) = t1.z;
+      F(kT2x) = t2.x, F(kT2y) = t2.y, F(kT2z) = t2.z;
+      F(kFriction) = rec.friction, F(kRestitution) = rec.restitution;
+      F(kMassA) = ma, F(kMassB) = mb;
       const vec3 pa = s.position(rec.slot_a), pb = s.position(rec.slot_b);
       const SolverBody &ba = sb.bodies[a], &bb = sb.bodies[b];
       // A row along direction d with lever arms ra, rb: writes arms and inertia images at
@@ -114,7 +112,7 @@ uint32_t ContactSolver::prepare(const BodyStore& s, const std::vector<ContactRec
         const vec3 imp_a = sym_mul(ia, arm_a), imp_b = sym_mul(ib, arm_b);
         const vec3 v[4] = {arm_a, arm_b, imp_a, imp_b};
         for (uint32_t q = 0; q < 4; ++q)
-          for (uint32_t c = 0; c < 3; ++c) f[base + 3 * q + c][k] = v[q][int(c)];
+          for (uint32_t c = 0; c < 3; ++c) F(base + 3 * q + c) = v[q][int(c)];
         const float kk = (ma + mb) + (dot(arm_a, imp_a) + dot(arm_b, imp_b));
         return kk > 0.0f ? 1.0f / kk : 0.0f;
       };
@@ -124,26 +122,26 @@ uint32_t ContactSolver::prepare(const BodyStore& s, const std::vector<ContactRec
         const ContactPoint& cp = rec.manifold.points[j];
         const vec3 ra = cp.position - pa, rb = cp.position - pb;
         centre = centre + cp.position;
-        f[point_field(j, kNormalMass)][k] = row(point_field(j, 0), ra, rb, n);
-        f[point_field(j, kSeparation)][k] = cp.separation;
-        f[point_field(j, kNormalImpulse)][k] = warm ? rec.normal_impulse[j] : 0.0f;
-        f[point_field(j, kMaxNormalImpulse)][k] = 0.0f;
+        F(point_field(j, kNormalMass)) = row(point_field(j, 0), ra, rb, n);
+        F(point_field(j, kSeparation)) = cp.separation;
+        F(point_field(j, kNormalImpulse)) = warm ? rec.normal_impulse[j] : 0.0f;
+        F(point_field(j, kMaxNormalImpulse)) = 0.0f;
         const vec3 dv = (body_v(bb) + cross(body_w(bb), rb)) - (body_v(ba) + cross(body_w(ba), ra));
-        f[point_field(j, kRelativeVelocity)][k] = dot(dv, n);
+        F(point_field(j, kRelativeVelocity)) = dot(dv, n);
       }
       centre = centre / float(count);
       float radius = 0.0f;
       for (uint32_t j = 0; j < count; ++j) radius = radius + length(rec.manifold.points[j].position - centre);
-      f[kTwistRadius][k] = radius / float(count);
-      f[kTangentMass1][k] = row(kFrictionBase, centre - pa, centre - pb, t1);
-      f[kTangentMass2][k] = row(kFrictionBase + 12, centre - pa, centre - pb, t2);
+      F(kTwistRadius) = radius / float(count);
+      F(kTangentMass1) = row(kFrictionBase, centre - pa, centre - pb, t1);
+      F(kTangentMass2) = row(kFrictionBase + 12, centre - pa, centre - pb, t2);
       const vec3 twist_a = sym_mul(ia, n), twist_b = sym_mul(ib, n);
-      for (uint32_t c = 0; c < 3; ++c) f[kTwistImpA + c][k] = twist_a[int(c)], f[kTwistImpB + c][k] = twist_b[int(c)];
+      for (uint32_t c = 0; c < 3; ++c) F(kTwistImpA + c) = twist_a[int(c)], F(kTwistImpB + c) = twist_b[int(c)];
       const float kt = dot(n, twist_a) + dot(n, twist_b);
-      f[kTwistMass][k] = kt > 0.0f ? 1.0f / kt : 0.0f;
-      f[kTangentImpulse1][k] = warm ? rec.friction_impulse[0] : 0.0f;
-      f[kTangentImpulse2][k] = warm ? rec.friction_impulse[1] : 0.0f;
-      f[kTwistImpulse][k] = warm ? rec.friction_impulse[2] : 0.0f;
+      F(kTwistMass) = kt > 0.0f ? 1.0f / kt : 0.0f;
+      F(kTangentImpulse1) = warm ? rec.friction_impulse[0] : 0.0f;
+      F(kTangentImpulse2) = warm ? rec.friction_impulse[1] : 0.0f;
+      F(kTwistImpulse) = warm ? rec.friction_impulse[2] : 0.0f;
     }
   });
   return plan_.colors();
@@ -153,7 +151,7 @@ ContactKernelArgs ContactSolver::args_for(BiasMode mode) const {
   ContactKernelArgs a;
   a.bodies = sb_.bodies;
   a.body_a = body_a_.data(), a.body_b = body_b_.data();
-  a.f = field_ptrs_.data();
+  a.f = const_cast<float*>(fields_.data());
   a.mode = mode;
   a.inv_h = 1.0f / h_;
   const float hertz = def_->contact_hertz < 0.25f * a.inv_h ? def_->contact_hertz : 0.25f * a.inv_h;
@@ -168,7 +166,7 @@ ContactKernelArgs ContactSolver::args_for(BiasMode mode) const {
 
 void ContactSolver::run(contact_pass_fn* pass, const ContactKernelArgs& args) const {
   for (uint32_t c = 0; c < plan_.colors(); ++c) {
-    const std::size_t first = plan_.padded_first[c], n = plan_.padded_first[c + 1] - first;
+    const std::size_t first = plan_.padded_first[c], n = plan_.padded_end[c] - first;
     parallel_for(n, kSolveChunk, [&](std::size_t b, std::size_t e) { pass(args, first + b, first + e); });
   }
 }
@@ -196,25 +194,26 @@ void ContactSolver::restitution() {
 void ContactSolver::project_positions(BodyStore& s, const uint32_t* slot_of_body) {
   if (count_ == 0) return;
   const float slop = def_->linear_slop, percent = def_->baumgarte;
-  float* const* f = field_ptrs_.data();
+  const float* const fields = fields_.data();
   for (uint32_t c = 0; c < plan_.colors(); ++c) {
-    const std::size_t first = plan_.padded_first[c], n = plan_.padded_first[c + 1] - first;
+    const std::size_t first = plan_.padded_first[c], n = plan_.padded_end[c] - first;
     parallel_for(n, kSolveChunk, [&](std::size_t b, std::size_t e) {
       for (std::size_t k = first + b; k < first + e; ++k) {
         if (record_of_slot_[k] == kNoRecord) continue;
+        auto F = [&](uint32_t x) { return fields[field_index(x, k)]; };
         SolverBody &ba = sb_.bodies[body_a_[k]], &bb = sb_.bodies[body_b_[k]];
-        const float ma = f[kMassA][k], mb = f[kMassB][k];
+        const float ma = F(kMassA), mb = F(kMassB);
         if (!(ma + mb > 0.0f)) continue;
-        const vec3 nrm{f[kNx][k], f[kNy][k], f[kNz][k]};
+        const vec3 nrm{F(kNx), F(kNy), F(kNz)};
         const vec3 d0 = vec3{bb.dp[0], bb.dp[1], bb.dp[2]} - vec3{ba.dp[0], ba.dp[1], ba.dp[2]};
         const vec3 ta{ba.dtheta[0], ba.dtheta[1], ba.dtheta[2]}, tb{bb.dtheta[0], bb.dtheta[1], bb.dtheta[2]};
         float deepest = 0.0f;
         for (uint32_t j = 0; j < 4; ++j) {
-          if (f[point_field(j, kNormalMass)][k] == 0.0f) continue;
+          if (F(point_field(j, kNormalMass)) == 0.0f) continue;
           auto arm = [&](uint32_t base) {
-            return vec3{f[point_field(j, base)][k], f[point_field(j, base + 1)][k], f[point_field(j, base + 2)][k]};
+            return vec3{F(point_field(j, base)), F(point_field(j, base + 1)), F(point_field(j, base + 2))};
           };
-          const float sep = ((dot(d0, nrm) + dot(tb, arm(kArmB))) - dot(ta, arm(kArmA))) + f[point_field(j, kSeparation)][k];
+          const float sep = ((dot(d0, nrm) + dot(tb, arm(kArmB))) - dot(ta, arm(kArmA))) + F(point_field(j, kSeparation));
           deepest = sep < deepest ? sep : deepest;
         }
         const float depth = -(deepest + slop);
@@ -234,15 +233,16 @@ void ContactSolver::project_positions(BodyStore& s, const uint32_t* slot_of_body
 }
 
 void ContactSolver::store_impulses(std::vector<ContactRecord>& records) const {
-  const float* const* f = field_ptrs_.data();
+  const float* const fields = fields_.data();
   for (std::size_t k = 0; k < plan_.padded_total; ++k) {
     const uint32_t r = record_of_slot_[k];
     if (r == kNoRecord) continue;
+    auto F = [&](uint32_t x) { return fields[field_index(x, k)]; };
     ContactRecord& rec = records[r];
-    for (uint32_t j = 0; j < rec.manifold.count; ++j) rec.normal_impulse[j] = f[point_field(j, kNormalImpulse)][k];
-    rec.friction_impulse[0] = f[kTangentImpulse1][k];
-    rec.friction_impulse[1] = f[kTangentImpulse2][k];
-    rec.friction_impulse[2] = f[kTwistImpulse][k];
+    for (uint32_t j = 0; j < rec.manifold.count; ++j) rec.normal_impulse[j] = F(point_field(j, kNormalImpulse));
+    rec.friction_impulse[0] = F(kTangentImpulse1);
+    rec.friction_impulse[1] = F(kTangentImpulse2);
+    rec.friction_impulse[2] = F(kTwistImpulse);
   }
 }
 

@@ -24,12 +24,15 @@ namespace detail {
 inline constexpr std::size_t kConstraintAlign = 16;
 
 struct alignas(64) SolverBody {
-  float v[3];       ///< linear velocity
-  float w[3];       ///< angular velocity (world)
+  // First half: what every pass reads and writes (kernels move it as one 8-float row).
+  float v[3];        ///< linear velocity
+  float w[3];        ///< angular velocity (world)
+  uint32_t dynamic;  ///< written by the solver
+  float pad0;
+  // Second half: read by the biased passes only.
   float dp[3];      ///< displacement since the start of the step
   float dtheta[3];  ///< rotation since the start of the step, as the sum of h w (small angles)
-  uint32_t dynamic; ///< written by the solver
-  float pad[3];
+  float pad1[2];
 };
 static_assert(sizeof(SolverBody) == 64);
 
@@ -70,6 +73,13 @@ inline constexpr uint32_t kConstraintFields = uint32_t(kPointBase) + 4u * uint32
 inline constexpr uint32_t point_field(uint32_t j, uint32_t f) {
   return uint32_t(kPointBase) + j * uint32_t(kPointFields) + f;
 }
+// The fields are stored in blocks of kConstraintAlign constraints (AoSoA): block b holds
+// field 0 of its constraints, then field 1, ... A SIMD batch (of at most kConstraintAlign
+// lanes, starting at a multiple of its width) reads each field with one aligned load, and
+// all its fields lie in one contiguous run of memory instead of one stream per field.
+inline constexpr std::size_t field_index(uint32_t field, std::size_t k) {
+  return ((k / kConstraintAlign) * kConstraintFields + field) * kConstraintAlign + k % kConstraintAlign;
+}
 
 /// How the velocity iterations push penetrating contacts apart.
 enum class BiasMode : uint32_t {
@@ -86,7 +96,7 @@ struct ContactKernelArgs {
   SolverBody* bodies = nullptr;
   const uint32_t* body_a = nullptr;
   const uint32_t* body_b = nullptr;
-  float* const* f = nullptr;  ///< kConstraintFields arrays
+  float* f = nullptr;  ///< the constraint fields, blocks as field_index() lays them out
   BiasMode mode = BiasMode::none;
   float inv_h = 0.0f;          ///< 1 / sub-step
   Softness soft, soft_static;  ///< between two movable bodies / against an immovable one
@@ -154,8 +164,7 @@ class ContactSolver {
   std::vector<uint32_t> cand_a_, cand_b_;       // constraint -> solver bodies (colouring input)
   Column<uint32_t> body_a_, body_b_;            // padded slot -> solver bodies
   Column<uint32_t> record_of_slot_;             // padded slot -> record (kNoRecord for padding)
-  std::vector<Column<float>> fields_ = std::vector<Column<float>>(kConstraintFields);
-  std::vector<float*> field_ptrs_ = std::vector<float*>(kConstraintFields);
+  Column<float> fields_;  // field_index() layout
   std::size_t count_ = 0;
   bool any_restitution_ = false;
   uint32_t passes_ = 0;  // solve passes this step: odd ones visit the points in reverse

@@ -15,44 +15,124 @@ using detail::ContactKernelArgs;
 using detail::SolverBody;
 namespace cf = detail;
 
-// Element `field` of the bodies named by idx[i..i+width): one hardware gather on AVX2 and
-// AVX-512 (xsimd 8.1's batch::gather inserts lane by lane there, measured 3x slower), lane by
-// lane through a buffer elsewhere. Gathers move floats without arithmetic, so every level
-// reads the same bits.
-template <class L> inline L gather(const SolverBody* bodies, const uint32_t* idx, std::size_t i, std::size_t field) {
-  const float* base = reinterpret_cast<const float*>(bodies) + field;
+// A SolverBody is two rows of 8 floats: [v, w, dynamic flag, pad] and [dp, dtheta, pad, pad].
+// A batch of W constraints reads a row of each of its W bodies and transposes the rows into 8
+// lanes of W (and back to write v and w): W row loads and a few shuffles instead of one
+// gather per field, and W row stores instead of 6 W scalar stores. Transposes move floats
+// without arithmetic, so every level reads and writes the same bits as the float lane.
+constexpr std::size_t kRowVw = 0, kRowMotion = 8;
+
+template <class L> struct Rows8 {
+  L c[8];  // c[f]: float f of the row, one lane per body
+};
+
+#if defined(GYRO_ARCH_AVX2) || defined(GYRO_ARCH_AVX512)
+// 8 x 8 transpose within each 256-bit half (x86 AVX2: one half; AVX-512: rows k and k + 8
+// share a register, low and high half). Its own inverse.
+#if defined(GYRO_ARCH_AVX512)
+using RowReg = __m512;
+inline RowReg unpack_lo(RowReg a, RowReg b) { return _mm512_unpacklo_ps(a, b); }
+inline RowReg unpack_hi(RowReg a, RowReg b) { return _mm512_unpackhi_ps(a, b); }
+template <int Imm> inline RowReg shuf(RowReg a, RowReg b) { return _mm512_shuffle_ps(a, b, Imm); }
+// Within each 256-bit half: the low 128 bits of a and of b (lo) or their high 128 bits (hi).
+inline RowReg halves_lo(RowReg a, RowReg b) {
+  return _mm512_permutex2var_ps(a, _mm512_setr_epi32(0, 1, 2, 3, 16, 17, 18, 19, 8, 9, 10, 11, 24, 25, 26, 27), b);
+}
+inline RowReg halves_hi(RowReg a, RowReg b) {
+  return _mm512_permutex2var_ps(a, _mm512_setr_epi32(4, 5, 6, 7, 20, 21, 22, 23, 12, 13, 14, 15, 28, 29, 30, 31), b);
+}
+#else
+using RowReg = __m256;
+inline RowReg unpack_lo(RowReg a, RowReg b) { return _mm256_unpacklo_ps(a, b); }
+inline RowReg unpack_hi(RowReg a, RowReg b) { return _mm256_unpackhi_ps(a, b); }
+template <int Imm> inline RowReg shuf(RowReg a, RowReg b) { return _mm256_shuffle_ps(a, b, Imm); }
+inline RowReg halves_lo(RowReg a, RowReg b) { return _mm256_permute2f128_ps(a, b, 0x20); }
+inline RowReg halves_hi(RowReg a, RowReg b) { return _mm256_permute2f128_ps(a, b, 0x31); }
+#endif
+
+inline void transpose8(RowReg r[8]) {
+  const RowReg t0 = unpack_lo(r[0], r[1]), t1 = unpack_hi(r[0], r[1]);
+  const RowReg t2 = unpack_lo(r[2], r[3]), t3 = unpack_hi(r[2], r[3]);
+  const RowReg t4 = unpack_lo(r[4], r[5]), t5 = unpack_hi(r[4], r[5]);
+  const RowReg t6 = unpack_lo(r[6], r[7]), t7 = unpack_hi(r[6], r[7]);
+  const RowReg u0 = shuf<0x44>(t0, t2), u1 = shuf<0xEE>(t0, t2), u2 = shuf<0x44>(t1, t3), u3 = shuf<0xEE>(t1, t3);
+  const RowReg u4 = shuf<0x44>(t4, t6), u5 = shuf<0xEE>(t4, t6), u6 = shuf<0x44>(t5, t7), u7 = shuf<0xEE>(t5, t7);
+  r[0] = halves_lo(u0, u4), r[1] = halves_lo(u1, u5), r[2] = halves_lo(u2, u6), r[3] = halves_lo(u3, u7);
+  r[4] = halves_hi(u0, u4), r[5] = halves_hi(u1, u5), r[6] = halves_hi(u2, u6), r[7] = halves_hi(u3, u7);
+}
+
+inline const float* row_ptr(const SolverBody* bodies, uint32_t index, std::size_t row) {
+  return reinterpret_cast<const float*>(bodies + index) + row;
+}
+inline float* row_ptr(SolverBody* bodies, uint32_t index, std::size_t row) {
+  return reinterpret_cast<float*>(bodies + index) + row;
+}
+#endif
+
+template <class L> inline Rows8<L> load_rows(const SolverBody* bodies, const uint32_t* idx, std::size_t i, std::size_t row) {
+  Rows8<L> out;
   if constexpr (std::is_same_v<L, float>) {
-    return base[std::size_t(idx[i]) * 16];
+    const float* p = reinterpret_cast<const float*>(bodies + idx[i]) + row;
+    for (int f = 0; f < 8; ++f) out.c[f] = p[f];
   } else {
 #if defined(GYRO_ARCH_AVX512)
-    const __m512i offsets = _mm512_slli_epi32(_mm512_loadu_si512(idx + i), 4);  // 16 floats a body
-    return L(typename L::batch_f(_mm512_i32gather_ps(offsets, base, 4)));
+    RowReg r[8];
+    for (int k = 0; k < 8; ++k) {
+      const __m256 lo = _mm256_load_ps(row_ptr(bodies, idx[i + k], row));
+      const __m256 hi = _mm256_load_ps(row_ptr(bodies, idx[i + k + 8], row));
+      r[k] = _mm512_castpd_ps(_mm512_insertf64x4(_mm512_castps_pd(_mm512_castps256_ps512(lo)), _mm256_castps_pd(hi), 1));
+    }
+    transpose8(r);
+    for (int f = 0; f < 8; ++f) out.c[f] = L(typename L::batch_f(r[f]));
 #elif defined(GYRO_ARCH_AVX2)
-    const __m256i offsets = _mm256_slli_epi32(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(idx + i)), 4);
-    return L(typename L::batch_f(_mm256_i32gather_ps(base, offsets, 4)));
+    RowReg r[8];
+    for (int k = 0; k < 8; ++k) r[k] = _mm256_load_ps(row_ptr(bodies, idx[i + k], row));
+    transpose8(r);
+    for (int f = 0; f < 8; ++f) out.c[f] = L(typename L::batch_f(r[f]));
 #else
-    alignas(64) float buf[width_v<L>];
-    for (std::size_t k = 0; k < width_v<L>; ++k) buf[k] = base[std::size_t(idx[i + k]) * 16];
-    return load<L>(buf);
+    constexpr std::size_t W = width_v<L>;
+    alignas(64) float buf[8][W];
+    for (std::size_t k = 0; k < W; ++k) {
+      const float* p = reinterpret_cast<const float*>(bodies + idx[i + k]) + row;
+      for (int f = 0; f < 8; ++f) buf[f][k] = p[f];
+    }
+    for (int f = 0; f < 8; ++f) out.c[f] = load<L>(buf[f]);
 #endif
   }
+  return out;
 }
-
-template <class L> inline V3<L> gather3(const SolverBody* bodies, const uint32_t* idx, std::size_t i, std::size_t field) {
-  return {gather<L>(bodies, idx, i, field), gather<L>(bodies, idx, i, field + 1), gather<L>(bodies, idx, i, field + 2)};
-}
-
-constexpr std::size_t kV = 0, kW = 3, kDp = 6, kDtheta = 9;
 
 // Writes v and w back to the dynamic bodies among idx[i..i+width) (a colour names each
-// dynamic body once; static, kinematic and padding lanes are skipped). Lane by lane: an
-// AVX-512 masked scatter measured no faster.
+// dynamic body once; static, kinematic and padding lanes are skipped). `row` is the first
+// row as loaded: its flag and pad lanes go back unchanged.
 template <class L>
-inline void scatter_vw(SolverBody* bodies, const uint32_t* idx, std::size_t i, const V3<L>& v, const V3<L>& w) {
+inline void store_vw(SolverBody* bodies, const uint32_t* idx, std::size_t i, const Rows8<L>& row, const V3<L>& v,
+                     const V3<L>& w) {
   if constexpr (std::is_same_v<L, float>) {
     SolverBody& b = bodies[idx[i]];
     if (b.dynamic) b.v[0] = v.x, b.v[1] = v.y, b.v[2] = v.z, b.w[0] = w.x, b.w[1] = w.y, b.w[2] = w.z;
   } else {
+#if defined(GYRO_ARCH_AVX512) || defined(GYRO_ARCH_AVX2)
+    RowReg r[8] = {v.x.v, v.y.v, v.z.v, w.x.v, w.y.v, w.z.v, row.c[6].v, row.c[7].v};
+#if defined(GYRO_ARCH_AVX512)
+    const unsigned dyn = _mm512_cmpneq_epi32_mask(_mm512_castps_si512(row.c[6].v), _mm512_setzero_si512());
+#else
+    const unsigned dyn = unsigned(_mm256_movemask_ps(
+        _mm256_castsi256_ps(_mm256_cmpeq_epi32(_mm256_castps_si256(row.c[6].v), _mm256_setzero_si256())))) ^ 0xFFu;
+#endif
+    transpose8(r);
+    for (int k = 0; k < 8; ++k) {
+#if defined(GYRO_ARCH_AVX512)
+      if (dyn & (1u << k)) _mm256_store_ps(row_ptr(bodies, idx[i + k], kRowVw), _mm512_castps512_ps256(r[k]));
+      if (dyn & (1u << (k + 8)))
+        _mm256_store_ps(row_ptr(bodies, idx[i + k + 8], kRowVw),
+                        _mm256_castpd_ps(_mm512_extractf64x4_pd(_mm512_castps_pd(r[k]), 1)));
+#else
+      if (dyn & (1u << k)) _mm256_store_ps(row_ptr(bodies, idx[i + k], kRowVw), r[k]);
+#endif
+    }
+#else
+    (void)row;
     constexpr std::size_t W = width_v<L>;
     alignas(64) float buf[6][W];
     store(buf[0], v.x), store(buf[1], v.y), store(buf[2], v.z);
@@ -63,20 +143,25 @@ inline void scatter_vw(SolverBody* bodies, const uint32_t* idx, std::size_t i, c
       b.v[0] = buf[0][k], b.v[1] = buf[1][k], b.v[2] = buf[2][k];
       b.w[0] = buf[3][k], b.w[1] = buf[4][k], b.w[2] = buf[5][k];
     }
+#endif
   }
 }
 
 template <class L> struct Lanes {
-  const ContactKernelArgs& a;
-  std::size_t i;
-  L field(uint32_t f) const { return load<L>(a.f[f] + i); }
-  void set(uint32_t f, L v) const { store(a.f[f] + i, v); }
+  float* base;  // field 0 of constraint i; field f lies f * kConstraintAlign floats further
+  Lanes(const ContactKernelArgs& a, std::size_t i) : base(a.f + detail::field_index(0, i)) {}
+  L field(uint32_t f) const { return load<L>(base + std::size_t(f) * detail::kConstraintAlign); }
+  void set(uint32_t f, L v) const { store(base + std::size_t(f) * detail::kConstraintAlign, v); }
   V3<L> field3(uint32_t f) const { return {field(f), field(f + 1), field(f + 2)}; }
 };
+// A batch starts at a multiple of its width (colours and chunks start at multiples of
+// kConstraintAlign), so it never straddles two blocks.
+static_assert(detail::kConstraintAlign % width_v<Wide> == 0);
 
 template <class L> struct Pair {
   V3<L> va, wa, vb, wb;
   L ma, mb;
+  Rows8<L> row_a, row_b;  // as loaded (flag and pad lanes for the write-back)
 
   // Velocity of b relative to a along the row at field `base` (direction dir).
   L along(const Lanes<L>& c, uint32_t base, const V3<L>& dir) const {
@@ -98,21 +183,22 @@ template <class L> struct Pair {
 
 template <class L> inline Pair<L> load_pair(const ContactKernelArgs& a, const Lanes<L>& c, std::size_t i) {
   Pair<L> p;
-  p.va = gather3<L>(a.bodies, a.body_a, i, kV), p.wa = gather3<L>(a.bodies, a.body_a, i, kW);
-  p.vb = gather3<L>(a.bodies, a.body_b, i, kV), p.wb = gather3<L>(a.bodies, a.body_b, i, kW);
+  p.row_a = load_rows<L>(a.bodies, a.body_a, i, kRowVw), p.row_b = load_rows<L>(a.bodies, a.body_b, i, kRowVw);
+  p.va = {p.row_a.c[0], p.row_a.c[1], p.row_a.c[2]}, p.wa = {p.row_a.c[3], p.row_a.c[4], p.row_a.c[5]};
+  p.vb = {p.row_b.c[0], p.row_b.c[1], p.row_b.c[2]}, p.wb = {p.row_b.c[3], p.row_b.c[4], p.row_b.c[5]};
   p.ma = c.field(cf::kMassA), p.mb = c.field(cf::kMassB);
   return p;
 }
 
 template <class L> inline void store_pair(const ContactKernelArgs& a, const Pair<L>& p, std::size_t i) {
-  scatter_vw(a.bodies, a.body_a, i, p.va, p.wa);
-  scatter_vw(a.bodies, a.body_b, i, p.vb, p.wb);
+  store_vw(a.bodies, a.body_a, i, p.row_a, p.va, p.wa);
+  store_vw(a.bodies, a.body_b, i, p.row_b, p.vb, p.wb);
 }
 
 constexpr uint32_t kT1Row = cf::kFrictionBase, kT2Row = cf::kFrictionBase + 12;
 
 template <class L> void warm_start(const ContactKernelArgs& a, std::size_t i) {
-  const Lanes<L> c{a, i};
+  const Lanes<L> c(a, i);
   Pair<L> p = load_pair(a, c, i);
   const V3<L> n = c.field3(cf::kNx);
   for (uint32_t j = 0; j < 4; ++j) p.apply(c, cf::point_field(j, 0), n, c.field(cf::point_field(j, cf::kNormalImpulse)));
@@ -123,7 +209,7 @@ template <class L> void warm_start(const ContactKernelArgs& a, std::size_t i) {
 }
 
 template <class L> void solve(const ContactKernelArgs& a, std::size_t i) {
-  const Lanes<L> c{a, i};
+  const Lanes<L> c(a, i);
   Pair<L> p = load_pair(a, c, i);
   const V3<L> n = c.field3(cf::kNx);
   const L zero(0.0f);
@@ -134,8 +220,9 @@ template <class L> void solve(const ContactKernelArgs& a, std::size_t i) {
   V3<L> dth_a{zero, zero, zero}, dth_b{zero, zero, zero};
   L ds = zero;
   if (biased) {
-    const V3<L> dpa = gather3<L>(a.bodies, a.body_a, i, kDp), dpb = gather3<L>(a.bodies, a.body_b, i, kDp);
-    dth_a = gather3<L>(a.bodies, a.body_a, i, kDtheta), dth_b = gather3<L>(a.bodies, a.body_b, i, kDtheta);
+    const Rows8<L> ma = load_rows<L>(a.bodies, a.body_a, i, kRowMotion), mb = load_rows<L>(a.bodies, a.body_b, i, kRowMotion);
+    const V3<L> dpa{ma.c[0], ma.c[1], ma.c[2]}, dpb{mb.c[0], mb.c[1], mb.c[2]};
+    dth_a = {ma.c[3], ma.c[4], ma.c[5]}, dth_b = {mb.c[3], mb.c[4], mb.c[5]};
     ds = dot(dpb - dpa, n);
   }
   const auto immovable = p.ma == zero || p.mb == zero;
@@ -201,7 +288,7 @@ template <class L> void solve(const ContactKernelArgs& a, std::size_t i) {
 }
 
 template <class L> void restitution(const ContactKernelArgs& a, std::size_t i) {
-  const Lanes<L> c{a, i};
+  const Lanes<L> c(a, i);
   const L e = c.field(cf::kRestitution);
   Pair<L> p = load_pair(a, c, i);
   const V3<L> n = c.field3(cf::kNx);
