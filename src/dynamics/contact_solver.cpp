@@ -24,23 +24,6 @@ Softness make_soft(float hertz, float zeta, float h) {
   return {omega / a1, a2 * a3, a3};
 }
 
-// A deterministic friction basis from the normal alone (the same normal always gives the same
-// tangents, so impulses carried over from last step point the same way).
-void tangents(const vec3& n, vec3* t1, vec3* t2) {
-  vec3 t = std::abs(n.x) >= 0.57735f ? vec3{n.y, -n.x, 0.0f} : vec3{0.0f, n.z, -n.y};
-  t = t / std::sqrt(dot(t, t));
-  *t1 = t;
-  *t2 = cross(n, t);
-}
-
-vec3 sym_mul(const float* m, const vec3& x) {
-  return {(m[0] * x.x + m[1] * x.y) + m[2] * x.z, (m[1] * x.x + m[3] * x.y) + m[4] * x.z,
-          (m[2] * x.x + m[4] * x.y) + m[5] * x.z};
-}
-
-vec3 body_v(const SolverBody& b) { return {b.v[0], b.v[1], b.v[2]}; }
-vec3 body_w(const SolverBody& b) { return {b.w[0], b.w[1], b.w[2]}; }
-
 }  // namespace
 
 uint32_t ContactSolver::prepare(const BodyStore& s, const std::vector<ContactRecord>& records, const SolverBodies& sb,
@@ -77,72 +60,54 @@ uint32_t ContactSolver::prepare(const BodyStore& s, const std::vector<ContactRec
   }
   fields_.resize(slots * kConstraintFields, 0.0f);  // slots is a multiple of kConstraintAlign
 
-  // 3. Fields, in parallel over fixed chunks of slots (each slot writes only its own).
+  // 3. Fields, in parallel over fixed chunks of slots (each slot writes only its own): the
+  // scalar code copies what needs no arithmetic and stages the rest, the prepare kernel
+  // computes the rows in lanes.
+  stage_.resize(slots * kStageFields, 0.0f);
   const bool warm = def.enable_warm_starting;
+  contact_prepare_fn* const kernel = GYRO_DISPATCH(contact_prepare);
+  ContactPrepareArgs pa_args;
+  pa_args.bodies = sb.bodies, pa_args.body_a = body_a_.data(), pa_args.body_b = body_b_.data();
+  pa_args.f = fields_.data(), pa_args.stage = stage_.data();
   parallel_for(slots, 1024, [&](std::size_t begin, std::size_t end) {
     float* const fields = fields_.data();
+    float* const stage = stage_.data();
     for (std::size_t k = begin; k < end; ++k) {
       auto F = [&](uint32_t x) -> float& { return fields[field_index(x, k)]; };
+      auto S = [&](uint32_t x) -> float& { return stage[stage_index(x, k)]; };
       const uint32_t r = record_of_slot_[k];
       if (r == kNoRecord) {  // padding: an inert constraint (zero masses and impulses)
         for (uint32_t x = 0; x < kConstraintFields; ++x) F(x) = 0.0f;
+        for (uint32_t x = 0; x < kStageFields; ++x) S(x) = 0.0f;
         continue;
       }
       const ContactRecord& rec = records[r];
-      // Every field of a used slot is written below, except the points past the count.
-      for (uint32_t x = point_field(rec.manifold.count, 0); x < kConstraintFields; ++x) F(x) = 0.0f;
-      const uint32_t a = body_a_[k], b = body_b_[k];
-      const float ma = sb.inv_mass[a], mb = sb.inv_mass[b];
-      const float* ia = sb.inv_inertia + 6 * std::size_t(a);
-      const float* ib = sb.inv_inertia + 6 * std::size_t(b);
-      const vec3 n = rec.manifold.normal;
-      vec3 t1, t2;
-      tangents(n, &t1, &t2);
-      F(kNx) = n.x, F(kNy) = n.y, F(kNz) = n.z;
-      F(kT1x) = t1.x, F(kT1y) = t1.y, F(kT1z) = t1.z;
-      F(kT2x) = t2.x, F(kT2y) = t2.y, F(kT2z) = t2.z;
-      F(kFriction) = rec.friction, F(kRestitution) = rec.restitution;
-      F(kMassA) = ma, F(kMassB) = mb;
-      const vec3 pa = s.position(rec.slot_a), pb = s.position(rec.slot_b);
-      const SolverBody &ba = sb.bodies[a], &bb = sb.bodies[b];
-      // A row along direction d with lever arms ra, rb: writes arms and inertia images at
-      // `base` and returns its effective mass.
-      auto row = [&](uint32_t base, const vec3& ra, const vec3& rb, const vec3& d) {
-        const vec3 arm_a = cross(ra, d), arm_b = cross(rb, d);
-        const vec3 imp_a = sym_mul(ia, arm_a), imp_b = sym_mul(ib, arm_b);
-        const vec3 v[4] = {arm_a, arm_b, imp_a, imp_b};
-        for (uint32_t q = 0; q < 4; ++q)
-          for (uint32_t c = 0; c < 3; ++c) F(base + 3 * q + c) = v[q][int(c)];
-        const float kk = (ma + mb) + (dot(arm_a, imp_a) + dot(arm_b, imp_b));
-        return kk > 0.0f ? 1.0f / kk : 0.0f;
-      };
       const uint32_t count = rec.manifold.count;
-      vec3 centre{};
+      for (uint32_t x = point_field(count, 0); x < kConstraintFields; ++x) F(x) = 0.0f;
+      const uint32_t a = body_a_[k], b = body_b_[k];
+      const vec3 n = rec.manifold.normal;
+      F(kNx) = n.x, F(kNy) = n.y, F(kNz) = n.z;
+      F(kFriction) = rec.friction, F(kRestitution) = rec.restitution;
+      F(kMassA) = sb.inv_mass[a], F(kMassB) = sb.inv_mass[b];
       for (uint32_t j = 0; j < count; ++j) {
-        const ContactPoint& cp = rec.manifold.points[j];
-        const vec3 ra = cp.position - pa, rb = cp.position - pb;
-        centre = centre + cp.position;
-        F(point_field(j, kNormalMass)) = row(point_field(j, 0), ra, rb, n);
-        F(point_field(j, kSeparation)) = cp.separation;
+        F(point_field(j, kSeparation)) = rec.manifold.points[j].separation;
         F(point_field(j, kNormalImpulse)) = warm ? rec.normal_impulse[j] : 0.0f;
         F(point_field(j, kMaxNormalImpulse)) = 0.0f;
-        const vec3 dv = (body_v(bb) + cross(body_w(bb), rb)) - (body_v(ba) + cross(body_w(ba), ra));
-        F(point_field(j, kRelativeVelocity)) = dot(dv, n);
       }
-      centre = centre / float(count);
-      float radius = 0.0f;
-      for (uint32_t j = 0; j < count; ++j) radius = radius + length(rec.manifold.points[j].position - centre);
-      F(kTwistRadius) = radius / float(count);
-      F(kTangentMass1) = row(kFrictionBase, centre - pa, centre - pb, t1);
-      F(kTangentMass2) = row(kFrictionBase + 12, centre - pa, centre - pb, t2);
-      const vec3 twist_a = sym_mul(ia, n), twist_b = sym_mul(ib, n);
-      for (uint32_t c = 0; c < 3; ++c) F(kTwistImpA + c) = twist_a[int(c)], F(kTwistImpB + c) = twist_b[int(c)];
-      const float kt = dot(n, twist_a) + dot(n, twist_b);
-      F(kTwistMass) = kt > 0.0f ? 1.0f / kt : 0.0f;
       F(kTangentImpulse1) = warm ? rec.friction_impulse[0] : 0.0f;
       F(kTangentImpulse2) = warm ? rec.friction_impulse[1] : 0.0f;
       F(kTwistImpulse) = warm ? rec.friction_impulse[2] : 0.0f;
+      const vec3 pa = s.position(rec.slot_a), pb = s.position(rec.slot_b);
+      for (uint32_t c = 0; c < 3; ++c) S(kStagePa + c) = pa[int(c)], S(kStagePb + c) = pb[int(c)];
+      for (uint32_t c = 0; c < 6; ++c) {
+        S(kStageIa + c) = sb.inv_inertia[6 * std::size_t(a) + c];
+        S(kStageIb + c) = sb.inv_inertia[6 * std::size_t(b) + c];
+      }
+      S(kStageCount) = float(count);
+      for (uint32_t j = 0; j < 4; ++j)
+        for (uint32_t c = 0; c < 3; ++c) S(kStagePoints + 3 * j + c) = j < count ? rec.manifold.points[j].position[int(c)] : 0.0f;
     }
+    kernel(pa_args, begin, end);
   });
   return plan_.colors();
 }

@@ -81,6 +81,21 @@ inline constexpr std::size_t field_index(uint32_t field, std::size_t k) {
   return ((k / kConstraintAlign) * kConstraintFields + field) * kConstraintAlign + k % kConstraintAlign;
 }
 
+// Inputs of the prepare kernel that the fields do not hold, staged per constraint by the
+// scalar code in blocks laid out like the fields (stage_index).
+enum StageField : uint32_t {
+  kStagePa = 0,       ///< position of body a (3)
+  kStagePb = 3,       ///< position of body b (3)
+  kStageIa = 6,       ///< world inverse inertia of a, symmetric (6)
+  kStageIb = 12,      ///< of b (6)
+  kStageCount = 18,   ///< point count, as a float (0 for padding)
+  kStagePoints = 19,  ///< + 3 * j: position of point j (3)
+  kStageFields = 31,
+};
+inline constexpr std::size_t stage_index(uint32_t field, std::size_t k) {
+  return ((k / kConstraintAlign) * kStageFields + field) * kConstraintAlign + k % kConstraintAlign;
+}
+
 /// How the velocity iterations push penetrating contacts apart.
 enum class BiasMode : uint32_t {
   none = 0,       ///< speculative only (relaxation, linear projection)
@@ -107,8 +122,21 @@ struct ContactKernelArgs {
   uint32_t reverse = 0;  ///< solve a manifold's points 3..0 instead of 0..3 (alternated per pass)
 };
 
+/// The prepare kernel's view: it reads the normal and masses already in the fields and the
+/// staged inputs, and writes the friction basis, every row's lever arms, inertia images and
+/// effective mass, the points' relative normal velocities and the twist radius.
+struct ContactPrepareArgs {
+  const SolverBody* bodies = nullptr;
+  const uint32_t* body_a = nullptr;
+  const uint32_t* body_b = nullptr;
+  float* f = nullptr;
+  const float* stage = nullptr;
+};
+
 }  // namespace detail
 
+using contact_prepare_fn = void(const detail::ContactPrepareArgs&, std::size_t begin, std::size_t end);
+GYRO_KERNEL(contact_prepare, contact_prepare_fn)
 using contact_pass_fn = void(const detail::ContactKernelArgs&, std::size_t begin, std::size_t end);
 GYRO_KERNEL(contact_warm_start, contact_pass_fn)
 GYRO_KERNEL(contact_solve, contact_pass_fn)
@@ -165,6 +193,7 @@ class ContactSolver {
   Column<uint32_t> body_a_, body_b_;            // padded slot -> solver bodies
   Column<uint32_t> record_of_slot_;             // padded slot -> record (kNoRecord for padding)
   Column<float> fields_;  // field_index() layout
+  Column<float> stage_;   // stage_index() layout
   std::size_t count_ = 0;
   bool any_restitution_ = false;
   uint32_t passes_ = 0;  // solve passes this step: odd ones visit the points in reverse

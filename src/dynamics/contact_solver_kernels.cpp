@@ -147,9 +147,13 @@ inline void store_vw(SolverBody* bodies, const uint32_t* idx, std::size_t i, con
   }
 }
 
+// Fields of the constraints (or staged inputs) in lanes i..i+width: blocks of
+// kConstraintAlign constraints, `fields` floats each, field f of a block contiguous.
 template <class L> struct Lanes {
   float* base;  // field 0 of constraint i; field f lies f * kConstraintAlign floats further
-  Lanes(const ContactKernelArgs& a, std::size_t i) : base(a.f + detail::field_index(0, i)) {}
+  Lanes(float* data, uint32_t fields, std::size_t i)
+      : base(data + ((i / detail::kConstraintAlign) * fields * detail::kConstraintAlign + i % detail::kConstraintAlign)) {}
+  Lanes(const ContactKernelArgs& a, std::size_t i) : Lanes(a.f, cf::kConstraintFields, i) {}
   L field(uint32_t f) const { return load<L>(base + std::size_t(f) * detail::kConstraintAlign); }
   void set(uint32_t f, L v) const { store(base + std::size_t(f) * detail::kConstraintAlign, v); }
   V3<L> field3(uint32_t f) const { return {field(f), field(f + 1), field(f + 2)}; }
@@ -309,8 +313,96 @@ template <class L> void restitution(const ContactKernelArgs& a, std::size_t i) {
   store_pair(a, p, i);
 }
 
+
+// The symmetric 3x3 matrix m (xx, xy, xz, yy, yz, zz) times x.
+template <class L> inline V3<L> sym_mul(const L* m, const V3<L>& x) {
+  return {(m[0] * x.x + m[1] * x.y) + m[2] * x.z, (m[1] * x.x + m[3] * x.y) + m[4] * x.z,
+          (m[2] * x.x + m[4] * x.y) + m[5] * x.z};
+}
+
+// One constraint per lane. Points past the count, and padding lanes (count 0), get zeros.
+template <class L> void prepare(const detail::ContactPrepareArgs& a, std::size_t i) {
+  const Lanes<L> c(a.f, cf::kConstraintFields, i);
+  const Lanes<L> st(const_cast<float*>(a.stage), cf::kStageFields, i);
+  const L zero(0.0f), one(1.0f);
+  const L count = st.field(cf::kStageCount);
+  const auto has = count > zero;
+  const V3<L> n = c.field3(cf::kNx);
+  const L ma = c.field(cf::kMassA), mb = c.field(cf::kMassB);
+  const V3<L> pa = st.field3(cf::kStagePa), pb = st.field3(cf::kStagePb);
+  L ia[6], ib[6];
+  for (uint32_t q = 0; q < 6; ++q) ia[q] = st.field(cf::kStageIa + q), ib[q] = st.field(cf::kStageIb + q);
+  const Rows8<L> row_a = load_rows<L>(a.bodies, a.body_a, i, kRowVw), row_b = load_rows<L>(a.bodies, a.body_b, i, kRowVw);
+  const V3<L> va{row_a.c[0], row_a.c[1], row_a.c[2]}, wa{row_a.c[3], row_a.c[4], row_a.c[5]};
+  const V3<L> vb{row_b.c[0], row_b.c[1], row_b.c[2]}, wb{row_b.c[3], row_b.c[4], row_b.c[5]};
+
+  // A deterministic friction basis from the normal alone (the same normal always gives the
+  // same tangents, so impulses carried over from last step point the same way).
+  const auto from_xy = abs(n.x) >= L(0.57735f);
+  V3<L> t1{select(from_xy, n.y, zero), select(from_xy, -n.x, n.z), select(from_xy, zero, -n.y)};
+  const L t_len = sqrt(dot(t1, t1));
+  t1 = {t1.x / t_len, t1.y / t_len, t1.z / t_len};
+  const V3<L> t2 = cross(n, t1);
+  const V3<L> tangent[2] = {t1, t2};
+  for (uint32_t q = 0; q < 2; ++q) {
+    c.set(cf::kT1x + 3 * q, select(has, tangent[q].x, zero));
+    c.set(cf::kT1y + 3 * q, select(has, tangent[q].y, zero));
+    c.set(cf::kT1z + 3 * q, select(has, tangent[q].z, zero));
+  }
+
+  // A row along d with lever arms ra, rb: arms and inertia images at `base`, and its
+  // effective mass (0 where the lane has no such row).
+  auto row = [&](uint32_t base, const V3<L>& ra, const V3<L>& rb, const V3<L>& d, auto valid) {
+    const V3<L> arm_a = cross(ra, d), arm_b = cross(rb, d);
+    const V3<L> imp_a = sym_mul(ia, arm_a), imp_b = sym_mul(ib, arm_b);
+    const V3<L> v[4] = {arm_a, arm_b, imp_a, imp_b};
+    for (uint32_t q = 0; q < 4; ++q) {
+      c.set(base + 3 * q, select(valid, v[q].x, zero));
+      c.set(base + 3 * q + 1, select(valid, v[q].y, zero));
+      c.set(base + 3 * q + 2, select(valid, v[q].z, zero));
+    }
+    const L kk = (ma + mb) + (dot(arm_a, imp_a) + dot(arm_b, imp_b));
+    const auto ok = valid && kk > zero;
+    return select(ok, one / select(ok, kk, one), zero);
+  };
+
+  V3<L> centre{zero, zero, zero};
+  V3<L> points[4];
+  for (uint32_t j = 0; j < 4; ++j) {
+    const auto valid = L(float(j)) < count;
+    const V3<L> p = st.field3(cf::kStagePoints + 3 * j);
+    points[j] = p;
+    const V3<L> ra = p - pa, rb = p - pb;
+    centre = vselect(valid, centre + p, centre);
+    c.set(cf::point_field(j, cf::kNormalMass), row(cf::point_field(j, 0), ra, rb, n, valid));
+    const V3<L> dv = (vb + cross(wb, rb)) - (va + cross(wa, ra));
+    c.set(cf::point_field(j, cf::kRelativeVelocity), select(valid, dot(dv, n), zero));
+  }
+  const L safe_count = select(has, count, one);
+  centre = {centre.x / safe_count, centre.y / safe_count, centre.z / safe_count};
+  L radius = zero;
+  for (uint32_t j = 0; j < 4; ++j) {
+    const V3<L> d = points[j] - centre;
+    radius = select(L(float(j)) < count, radius + sqrt(dot(d, d)), radius);
+  }
+  c.set(cf::kTwistRadius, select(has, radius / safe_count, zero));
+  c.set(cf::kTangentMass1, row(kT1Row, centre - pa, centre - pb, t1, has));
+  c.set(cf::kTangentMass2, row(kT2Row, centre - pa, centre - pb, t2, has));
+  const V3<L> twist_a = sym_mul(ia, n), twist_b = sym_mul(ib, n);
+  c.set(cf::kTwistImpA, select(has, twist_a.x, zero)), c.set(cf::kTwistImpA + 1, select(has, twist_a.y, zero));
+  c.set(cf::kTwistImpA + 2, select(has, twist_a.z, zero));
+  c.set(cf::kTwistImpB, select(has, twist_b.x, zero)), c.set(cf::kTwistImpB + 1, select(has, twist_b.y, zero));
+  c.set(cf::kTwistImpB + 2, select(has, twist_b.z, zero));
+  const L kt = dot(n, twist_a) + dot(n, twist_b);
+  const auto ok = has && kt > zero;
+  c.set(cf::kTwistMass, select(ok, one / select(ok, kt, one), zero));
+}
+
 }  // namespace
 
+GYRO_FLATTEN void contact_prepare(const detail::ContactPrepareArgs& a, std::size_t begin, std::size_t end) {
+  for_lanes(begin, end, [&](auto tag, std::size_t i) { prepare<decltype(tag)>(a, i); });
+}
 GYRO_FLATTEN void contact_warm_start(const ContactKernelArgs& a, std::size_t begin, std::size_t end) {
   for_lanes(begin, end, [&](auto tag, std::size_t i) { warm_start<decltype(tag)>(a, i); });
 }
