@@ -126,6 +126,7 @@ ContactKernelArgs ContactSolver::args_for(BiasMode mode) const {
   a.slop = def_->linear_slop;
   a.max_push = def_->max_push_velocity;
   a.restitution_threshold = def_->restitution_threshold;
+  a.track_max_impulse = any_restitution_ ? 1u : 0u;
   return a;
 }
 

@@ -119,6 +119,7 @@ struct ContactKernelArgs {
   float slop = 0.0f;
   float max_push = 0.0f;       ///< cap on the bias velocity
   float restitution_threshold = 0.0f;
+  uint32_t track_max_impulse = 0;  ///< keep each point's largest applied impulse (only restitution reads it)
   uint32_t reverse = 0;  ///< solve a manifold's points 3..0 instead of 0..3 (alternated per pass)
 };
 

@@ -4,6 +4,7 @@
 #include "core/parallel.hpp"
 #include "core/validate.hpp"
 #include "dynamics/body_bounds.hpp"
+#include "dynamics/body_integrate.hpp"
 #include "dynamics/mass.hpp"
 #include "gyro/particles.hpp"
 #include "gyro/triangle_mesh.hpp"
@@ -238,21 +239,20 @@ void World::Impl::integrate_velocities(float h) {
 void World::Impl::integrate_positions(float h) {
   BodyStore& s = bodies;
   const std::size_t m = slot_of_body.size();
-  detail::parallel_for(m, kBodyChunk, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t b = begin; b < end; ++b) {
-      detail::SolverBody& sb = solver_bodies[b];
-      const uint32_t i = slot_of_body[b];
-      const vec3 v{sb.v[0], sb.v[1], sb.v[2]}, w{sb.w[0], sb.w[1], sb.w[2]};
-      const vec3 dp = v * h;
-      s.px[i] += dp.x, s.py[i] += dp.y, s.pz[i] += dp.z;
-      sb.dp[0] += dp.x, sb.dp[1] += dp.y, sb.dp[2] += dp.z;
-      const quat q = s.orientation(i);
-      const quat spin = quat{w.x, w.y, w.z, 0.0f} * q;
-      const quat qn = normalized(q + spin * (0.5f * h));
-      s.set_orientation(i, qn);
-      sb.dtheta[0] += w.x * h, sb.dtheta[1] += w.y * h, sb.dtheta[2] += w.z * h;
-    }
-  });
+  if (solver_index.size() < m) {
+    const std::size_t from = solver_index.size();
+    solver_index.resize(m);
+    for (std::size_t b = from; b < m; ++b) solver_index[b] = uint32_t(b);
+  }
+  detail::IntegrateArgs args;
+  args.bodies = solver_bodies.data();
+  args.solver_index = solver_index.data();
+  args.slot_of_body = slot_of_body.data();
+  args.px = s.px.data(), args.py = s.py.data(), args.pz = s.pz.data();
+  args.qx = s.qx.data(), args.qy = s.qy.data(), args.qz = s.qz.data(), args.qw = s.qw.data();
+  args.h = h;
+  integrate_positions_fn* const kernel = GYRO_DISPATCH(integrate_positions);
+  detail::parallel_for(m, kBodyChunk, [&](std::size_t begin, std::size_t end) { kernel(args, begin, end); });
 }
 
 void World::Impl::write_back() {

@@ -44,6 +44,7 @@ struct World::Impl {
   std::vector<float> inv_inertia, inv_mass;
   std::vector<uint8_t> writable;
   std::vector<uint32_t> index_of_slot, slot_of_body;
+  std::vector<uint32_t> solver_index;   // 0, 1, 2, ... (the integration kernel's body lanes)
   std::vector<float> lin_acc, ang_acc;  // 3 per solver body: constant over the step
   std::vector<uint8_t> island_awake;
   std::vector<float> island_rest;
