@@ -63,7 +63,7 @@ uint32_t ContactSolver::prepare(const BodyStore& s, const std::vector<ContactRec
   // 3. Fields, in parallel over fixed chunks of slots (each slot writes only its own): the
   // scalar code copies what needs no arithmetic and stages the rest, the prepare kernel
   // computes the rows in lanes.
-  stage_.resize(slots * kStageFields, 0.0f);
+  stage_.resize(slots * std::size_t(kStageFields), 0.0f);
   const bool warm = def.enable_warm_starting;
   contact_prepare_fn* const kernel = GYRO_DISPATCH(contact_prepare);
   ContactPrepareArgs pa_args;

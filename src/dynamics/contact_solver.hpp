@@ -8,8 +8,9 @@
 // them in any grouping: lane k computes exactly what the scalar path computes for
 // constraint k, and the result is the same at every SIMD width and thread count.
 //
-// Body state during the step is a dense array of SolverBody (one cache line each: a
-// constraint gathers two of them). Index `dummy` is a body that never moves (static or
+// Body state during the step is a dense array of SolverBody (one cache line each, two rows
+// of 8 floats: a batch of constraints loads a row of each of its bodies and transposes them
+// into lanes, solver_body_rows.hpp). Index `dummy` is a body that never moves (static or
 // sleeping bodies map to it); only bodies flagged dynamic are written back.
 #pragma once
 
@@ -93,7 +94,7 @@ enum StageField : uint32_t {
   kStageFields = 31,
 };
 inline constexpr std::size_t stage_index(uint32_t field, std::size_t k) {
-  return ((k / kConstraintAlign) * kStageFields + field) * kConstraintAlign + k % kConstraintAlign;
+  return ((k / kConstraintAlign) * std::size_t(kStageFields) + field) * kConstraintAlign + k % kConstraintAlign;
 }
 
 /// How the velocity iterations push penetrating contacts apart.

@@ -1,7 +1,7 @@
 // The contact solver's passes at this translation unit's SIMD level: one constraint (a
-// manifold of up to 4 points) per lane. Body velocities are gathered from the SolverBody
-// array, updated point by point (Gauss-Seidel inside the manifold, exactly as the scalar
-// path does) and scattered back to the dynamic bodies. Unused points have zero masses and
+// manifold of up to 4 points) per lane. Body velocities are loaded from the SolverBody
+// array as transposed rows, updated point by point (Gauss-Seidel inside the manifold, exactly
+// as the scalar path does) and stored back to the dynamic bodies. Unused points have zero masses and
 // impulses, so they compute harmless zeros instead of branching.
 #include "dynamics/contact_solver.hpp"
 #include "dynamics/solver_body_rows.hpp"
