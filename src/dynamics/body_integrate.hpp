@@ -20,6 +20,11 @@ struct IntegrateArgs {
   float *px = nullptr, *py = nullptr, *pz = nullptr;
   float *qx = nullptr, *qy = nullptr, *qz = nullptr, *qw = nullptr;
   float h = 0.0f;
+  // Velocity integration only:
+  const float* lin_acc[3] = {};  ///< per solver body, constant over the step
+  const float* ang_acc[3] = {};
+  const float *linear_damping = nullptr, *angular_damping = nullptr;  ///< per body store slot
+  const float *inv_ix = nullptr, *inv_iy = nullptr, *inv_iz = nullptr;  ///< principal inverse inertia, per slot
 };
 
 }  // namespace detail
@@ -28,5 +33,9 @@ struct IntegrateArgs {
 /// [begin, end).
 using integrate_positions_fn = void(const detail::IntegrateArgs&, std::size_t begin, std::size_t end);
 GYRO_KERNEL(integrate_positions, integrate_positions_fn)
+/// For the dynamic solver bodies of [begin, end): v += h a, damped; w += h alpha, then the
+/// gyroscopic torque -w x (I w) integrated implicitly in the body frame (one Newton step,
+/// Catto 2015: stable for long thin bodies where the explicit form gains energy), damped.
+GYRO_KERNEL(integrate_velocities, integrate_positions_fn)
 
 }  // namespace gyro

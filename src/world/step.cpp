@@ -178,65 +178,13 @@ void World::Impl::build_solver_bodies() {
         aa = {(ii[0] * t.x + ii[1] * t.y) + ii[2] * t.z, (ii[1] * t.x + ii[3] * t.y) + ii[4] * t.z,
               (ii[2] * t.x + ii[4] * t.y) + ii[5] * t.z};
       }
-      lin_acc[3 * b] = la.x, lin_acc[3 * b + 1] = la.y, lin_acc[3 * b + 2] = la.z;
-      ang_acc[3 * b] = aa.x, ang_acc[3 * b + 1] = aa.y, ang_acc[3 * b + 2] = aa.z;
+      lin_acc[b] = la.x, lin_acc[m + b] = la.y, lin_acc[2 * std::size_t(m) + b] = la.z;
+      ang_acc[b] = aa.x, ang_acc[m + b] = aa.y, ang_acc[2 * std::size_t(m) + b] = aa.z;
     }
   });
 }
 
-// v += h a, damped; w += h alpha, then the gyroscopic torque -w x (I w) integrated implicitly
-// in the body frame (one Newton step, Catto 2015): stable for long thin bodies where the
-// explicit form gains energy.
-void World::Impl::integrate_velocities(float h) {
-  BodyStore& s = bodies;
-  const std::size_t m = slot_of_body.size();
-  detail::parallel_for(m, kBodyChunk, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t b = begin; b < end; ++b) {
-      detail::SolverBody& sb = solver_bodies[b];
-      if (!sb.dynamic) continue;
-      const uint32_t i = slot_of_body[b];
-      const float ld = 1.0f / (1.0f + h * s.linear_damping[i]);
-      const float ad = 1.0f / (1.0f + h * s.angular_damping[i]);
-      vec3 v{sb.v[0], sb.v[1], sb.v[2]}, w{sb.w[0], sb.w[1], sb.w[2]};
-      v = (v + vec3{lin_acc[3 * b], lin_acc[3 * b + 1], lin_acc[3 * b + 2]} * h) * ld;
-      w = w + vec3{ang_acc[3 * b], ang_acc[3 * b + 1], ang_acc[3 * b + 2]} * h;
-      const float dx = s.inv_ix[i], dy = s.inv_iy[i], dz = s.inv_iz[i];
-      if (!(dx == dy && dy == dz) && dx > 0.0f) {
-        const quat q = s.orientation(i);
-        const vec3 wb = rotate(conjugate(q), w);
-        const vec3 ib{1.0f / dx, 1.0f / dy, 1.0f / dz};
-        const vec3 iw = ib * wb;
-        const vec3 f = cross(wb, iw) * h;
-        // J = I + h (skew(wb) I - skew(I wb))
-        float j[3][3];
-        const float skw[3][3] = {{0.0f, -wb.z, wb.y}, {wb.z, 0.0f, -wb.x}, {-wb.y, wb.x, 0.0f}};
-        const float ski[3][3] = {{0.0f, -iw.z, iw.y}, {iw.z, 0.0f, -iw.x}, {-iw.y, iw.x, 0.0f}};
-        for (int r = 0; r < 3; ++r)
-          for (int c = 0; c < 3; ++c) j[r][c] = (r == c ? ib[r] : 0.0f) + h * (skw[r][c] * ib[c] - ski[r][c]);
-        const float c00 = j[1][1] * j[2][2] - j[1][2] * j[2][1];
-        const float c01 = j[1][2] * j[2][0] - j[1][0] * j[2][2];
-        const float c02 = j[1][0] * j[2][1] - j[1][1] * j[2][0];
-        const float det = (j[0][0] * c00 + j[0][1] * c01) + j[0][2] * c02;
-        if (std::abs(det) > 0.0f && detail::is_finite(det)) {
-          const float inv = 1.0f / det;
-          // x = J^-1 f by the adjugate.
-          const float a[3][3] = {{c00, j[0][2] * j[2][1] - j[0][1] * j[2][2], j[0][1] * j[1][2] - j[0][2] * j[1][1]},
-                                 {c01, j[0][0] * j[2][2] - j[0][2] * j[2][0], j[0][2] * j[1][0] - j[0][0] * j[1][2]},
-                                 {c02, j[0][1] * j[2][0] - j[0][0] * j[2][1], j[0][0] * j[1][1] - j[0][1] * j[1][0]}};
-          const vec3 x{((a[0][0] * f.x + a[0][1] * f.y) + a[0][2] * f.z) * inv,
-                       ((a[1][0] * f.x + a[1][1] * f.y) + a[1][2] * f.z) * inv,
-                       ((a[2][0] * f.x + a[2][1] * f.y) + a[2][2] * f.z) * inv};
-          w = rotate(q, wb - x);
-        }
-      }
-      w = w * ad;
-      sb.v[0] = v.x, sb.v[1] = v.y, sb.v[2] = v.z;
-      sb.w[0] = w.x, sb.w[1] = w.y, sb.w[2] = w.z;
-    }
-  });
-}
-
-void World::Impl::integrate_positions(float h) {
+detail::IntegrateArgs World::Impl::integrate_args(float h) {
   BodyStore& s = bodies;
   const std::size_t m = slot_of_body.size();
   if (solver_index.size() < m) {
@@ -251,8 +199,22 @@ void World::Impl::integrate_positions(float h) {
   args.px = s.px.data(), args.py = s.py.data(), args.pz = s.pz.data();
   args.qx = s.qx.data(), args.qy = s.qy.data(), args.qz = s.qz.data(), args.qw = s.qw.data();
   args.h = h;
+  for (std::size_t k = 0; k < 3; ++k) args.lin_acc[k] = lin_acc.data() + k * m, args.ang_acc[k] = ang_acc.data() + k * m;
+  args.linear_damping = s.linear_damping.data(), args.angular_damping = s.angular_damping.data();
+  args.inv_ix = s.inv_ix.data(), args.inv_iy = s.inv_iy.data(), args.inv_iz = s.inv_iz.data();
+  return args;
+}
+
+void World::Impl::integrate_velocities(float h) {
+  const detail::IntegrateArgs args = integrate_args(h);
+  integrate_positions_fn* const kernel = GYRO_DISPATCH(integrate_velocities);
+  detail::parallel_for(slot_of_body.size(), kBodyChunk, [&](std::size_t begin, std::size_t end) { kernel(args, begin, end); });
+}
+
+void World::Impl::integrate_positions(float h) {
+  const detail::IntegrateArgs args = integrate_args(h);
   integrate_positions_fn* const kernel = GYRO_DISPATCH(integrate_positions);
-  detail::parallel_for(m, kBodyChunk, [&](std::size_t begin, std::size_t end) { kernel(args, begin, end); });
+  detail::parallel_for(slot_of_body.size(), kBodyChunk, [&](std::size_t begin, std::size_t end) { kernel(args, begin, end); });
 }
 
 void World::Impl::write_back() {

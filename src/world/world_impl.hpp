@@ -3,6 +3,7 @@
 
 #include "core/columns.hpp"
 #include "dynamics/body_store.hpp"
+#include "dynamics/body_integrate.hpp"
 #include "dynamics/broadphase.hpp"
 #include "dynamics/contact_solver.hpp"
 #include "dynamics/contacts.hpp"
@@ -45,7 +46,7 @@ struct World::Impl {
   std::vector<uint8_t> writable;
   std::vector<uint32_t> index_of_slot, slot_of_body;
   std::vector<uint32_t> solver_index;   // 0, 1, 2, ... (the integration kernel's body lanes)
-  std::vector<float> lin_acc, ang_acc;  // 3 per solver body: constant over the step
+  std::vector<float> lin_acc, ang_acc;  // x, y, z columns of the solver bodies: constant over the step
   std::vector<uint8_t> island_awake;
   std::vector<float> island_rest;
   std::vector<detail::Collider> soft_shapes;        // the bodies near a soft body, as colliders
@@ -55,6 +56,7 @@ struct World::Impl {
   void find_pairs(float dt);
   void wake_islands();
   void build_solver_bodies();
+  detail::IntegrateArgs integrate_args(float h);
   void integrate_velocities(float h);
   void integrate_positions(float h);
   void write_back();
