@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <memory>
 #include <numeric>
 #include <string>
@@ -258,21 +259,38 @@ struct Measured {
   bool hash_stable = true;  // the same hash in every rep
 };
 
-template <class RunOnce> bool measure(const PyramidScene& s, int reps, RunOnce run_once, Measured& m) {
-  // A warm-up run first (page faults, caches, the thread pool, the CPU's clock), as
-  // median_ms does, except for P2, whose single run takes seconds.
-  if (s.size() * std::size_t(s.steps) <= 1000000 && !run_once(m.last, &m.hash)) return false;
+// Every engine and setting of a scene, measured rep by rep in turn (Bullet's rep, then
+// each gyro setting's, then Bullet's again, ...), so a slow phase of a noisy machine falls
+// on all of them instead of on whichever was measured then. A warm-up run of each first
+// (page faults, caches, the thread pool, the CPU's clock), except for P2, whose single run
+// takes seconds. An engine that fails is dropped (ok = false).
+using RunOnce = std::function<bool(PyramidRun&, uint64_t*)>;
+struct Runner {
+  RunOnce run;
+  Measured m;
+  bool ok = true;
   std::vector<double> build, step;
-  for (int r = 0; r < std::max(1, reps); ++r) {
-    uint64_t h = 0;
-    if (!run_once(m.last, &h)) return false;
-    if (r > 0 && h != m.hash) m.hash_stable = false;
-    m.hash = h;
-    build.push_back(m.last.build_ms);
-    step.push_back(m.last.step_ms / s.steps);
+};
+
+void measure_interleaved(const PyramidScene& s, int reps, std::vector<Runner>& runners) {
+  if (s.size() * std::size_t(s.steps) <= 1000000)
+    for (Runner& r : runners) r.ok = r.run(r.m.last, &r.m.hash);
+  for (int rep = 0; rep < std::max(1, reps); ++rep) {
+    for (Runner& r : runners) {
+      if (!r.ok) continue;
+      uint64_t h = 0;
+      if (!r.run(r.m.last, &h)) {
+        r.ok = false;
+        continue;
+      }
+      if (rep > 0 && h != r.m.hash) r.m.hash_stable = false;
+      r.m.hash = h;
+      r.build.push_back(r.m.last.build_ms);
+      r.step.push_back(r.m.last.step_ms / s.steps);
+    }
   }
-  m.build_ms = median(build), m.step_ms = median(step);
-  return true;
+  for (Runner& r : runners)
+    if (r.ok) r.m.build_ms = median(r.build), r.m.step_ms = median(r.step);
 }
 
 void emit(const PyramidScene& s, const char* library, const char* method, const char* simd, uint32_t threads,
@@ -296,49 +314,68 @@ void run_scene(const Options& o, const PyramidScene& s) {
               s.size(), s.steps, double(s.ground_half[0]), double(s.ground_half[1]), double(s.ground_half[2]));
   std::string summary;
   char buf[160];
-  double bullet_ms = 0;
-  if (o.peers && bullet_dynamics_available()) {
-    Measured m;
-    if (measure(s, o.reps, [&](PyramidRun& r, uint64_t*) { return bullet_run_pyramid(s, r); }, m)) {
-      bullet_ms = m.step_ms;
-      emit(s, "bullet", "btSequentialImpulse", "scalar", 1, 1, 10, m, o.reps, nullptr, 0);
-      std::snprintf(buf, sizeof buf, "Bullet %d.%02d %.3f", bullet_version() / 100, bullet_version() % 100, m.step_ms);
-      summary += buf;
-    }
-  } else if (o.peers) {
-    std::printf("# bullet not installed\n");
-  }
   // By default only the level kernels run at now (the best, or GYRO_SIMD's): a physics
   // scene at every level takes minutes. --simd asks for others; the state hash must not
   // change with them.
-  std::vector<SimdLevel> levels = o.levels.empty() ? std::vector<SimdLevel>{simd_level()} : levels_to_run(o);
-  for (const GyroModel& model : gyro_models(s)) {
-    bool have_hash = false;
-    uint64_t first_hash = 0;  // every level and thread count must give this one
-    for (SimdLevel level : levels) {
-      set_simd_level(level);
-      for (uint32_t threads : threads_to_run(o)) {
-        set_thread_count(threads);
-        Measured m;
-        if (!measure(s, o.reps, [&](PyramidRun& r, uint64_t* h) { return gyro_run_pyramid(s, model.def, r, h); }, m))
-          continue;
-        const uint32_t substeps = model.def.contact_model == ContactModel::soft_step ? model.def.substeps : 1;
-        emit(s, "gyro", model.method, simd_level_name(level), threads, substeps, model.def.velocity_iterations, m,
-             o.reps, &m.hash, bullet_ms);
-        if (!m.hash_stable) std::printf("# WARNING: %s %s: state_hash differs between reps\n", s.name, model.method);
-        if (have_hash && m.hash != first_hash)
-          std::printf("# WARNING: %s %s: state_hash differs across SIMD levels / threads\n", s.name, model.method);
-        if (!have_hash) have_hash = true, first_hash = m.hash;
-        std::snprintf(buf, sizeof buf, "%sgyro %s %s %ut %.3f", summary.empty() ? "" : ", ", model.method,
-                      simd_level_name(level), threads, m.step_ms);
-        summary += buf;
-        if (bullet_ms > 0) std::snprintf(buf, sizeof buf, " (%.2fx)", bullet_ms / m.step_ms), summary += buf;
-      }
-    }
-  }
+  const std::vector<SimdLevel> levels = o.levels.empty() ? std::vector<SimdLevel>{simd_level()} : levels_to_run(o);
+  struct Config {
+    const GyroModel* model;
+    SimdLevel level;
+    uint32_t threads;
+  };
+  const std::vector<GyroModel> models = gyro_models(s);
+  std::vector<Config> configs;
+  for (const GyroModel& model : models)
+    for (SimdLevel level : levels)
+      for (uint32_t threads : threads_to_run(o)) configs.push_back({&model, level, threads});
+
+  std::vector<Runner> runners;
+  const bool with_bullet = o.peers && bullet_dynamics_available();
+  if (o.peers && !with_bullet) std::printf("# bullet not installed\n");
+  if (with_bullet) runners.push_back({[&](PyramidRun& r, uint64_t*) { return bullet_run_pyramid(s, r); }, {}, true, {}, {}});
+  for (const Config& c : configs)
+    runners.push_back({[&s, c](PyramidRun& r, uint64_t* h) {
+                         set_simd_level(c.level);
+                         set_thread_count(c.threads);
+                         return gyro_run_pyramid(s, c.model->def, r, h);
+                       },
+                       {}, true, {}, {}});
+  measure_interleaved(s, o.reps, runners);
   set_simd_level(SimdLevel::automatic);
   set_thread_count(0);
-  std::printf("# %s ms/step (gyro speed-up over Bullet): %s\n", s.name, summary.c_str());
+
+  double bullet_ms = 0;
+  std::size_t next = 0;
+  if (with_bullet) {
+    const Runner& r = runners[next++];
+    if (r.ok) {
+      bullet_ms = r.m.step_ms;
+      emit(s, "bullet", "btSequentialImpulse", "scalar", 1, 1, 10, r.m, o.reps, nullptr, 0);
+      std::snprintf(buf, sizeof buf, "Bullet %d.%02d %.3f", bullet_version() / 100, bullet_version() % 100, r.m.step_ms);
+      summary += buf;
+    }
+  }
+  const GyroModel* current = nullptr;
+  bool have_hash = false;
+  uint64_t first_hash = 0;  // every level and thread count of a model must give this one
+  for (const Config& c : configs) {
+    const Runner& r = runners[next++];
+    if (c.model != current) current = c.model, have_hash = false;
+    if (!r.ok) continue;
+    const Measured& m = r.m;
+    const uint32_t substeps = c.model->def.contact_model == ContactModel::soft_step ? c.model->def.substeps : 1;
+    emit(s, "gyro", c.model->method, simd_level_name(c.level), c.threads, substeps, c.model->def.velocity_iterations, m,
+         o.reps, &m.hash, bullet_ms);
+    if (!m.hash_stable) std::printf("# WARNING: %s %s: state_hash differs between reps\n", s.name, c.model->method);
+    if (have_hash && m.hash != first_hash)
+      std::printf("# WARNING: %s %s: state_hash differs across SIMD levels / threads\n", s.name, c.model->method);
+    if (!have_hash) have_hash = true, first_hash = m.hash;
+    std::snprintf(buf, sizeof buf, "%sgyro %s %s %ut %.3f", summary.empty() ? "" : ", ", c.model->method,
+                  simd_level_name(c.level), c.threads, m.step_ms);
+    summary += buf;
+    if (bullet_ms > 0) std::snprintf(buf, sizeof buf, " (%.2fx)", bullet_ms / m.step_ms), summary += buf;
+  }
+  std::printf("# %s ms/step (gyro speed-up over Bullet; reps interleaved): %s\n", s.name, summary.c_str());
   if (bullet_ms > 0)
     std::printf("# %s: Bullet multiplies the bodies' friction (0.6 * 0.6 = 0.36 per contact), gyro takes "
                 "sqrt(0.6 * 0.6) = 0.6\n", s.name);
