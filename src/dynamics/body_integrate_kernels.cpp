@@ -130,15 +130,14 @@ template <class L> void integrate_velocity_lanes(const IntegrateArgs& a, std::si
     integrate_velocity_one(a, i);
   } else {
     const uint32_t* slots = a.slot_of_body;
-    Rows8<L> r0 = load_rows<L>(a.bodies, a.solver_index, i, kRowVw);
+    const Rows8<L> r0 = load_rows<L>(a.bodies, a.solver_index, i, kRowVw);
     const L h(a.h), one(1.0f), zero(0.0f);
     const L ld = one / (one + h * gather_slots<L>(a.linear_damping, slots, i));
     const L ad = one / (one + h * gather_slots<L>(a.angular_damping, slots, i));
     const V3<L> la{load<L>(a.lin_acc[0] + i), load<L>(a.lin_acc[1] + i), load<L>(a.lin_acc[2] + i)};
     const V3<L> aa{load<L>(a.ang_acc[0] + i), load<L>(a.ang_acc[1] + i), load<L>(a.ang_acc[2] + i)};
-    const V3<L> v0{r0.c[0], r0.c[1], r0.c[2]}, w0{r0.c[3], r0.c[4], r0.c[5]};
-    const V3<L> v = (v0 + la * h) * ld;
-    V3<L> w = w0 + aa * h;
+    const V3<L> v = (col3(r0, 0) + la * h) * ld;
+    V3<L> w = col3(r0, 3) + aa * h;
     const L dx = gather_slots<L>(a.inv_ix, slots, i), dy = gather_slots<L>(a.inv_iy, slots, i);
     const L dz = gather_slots<L>(a.inv_iz, slots, i);
     const auto gyro = !((dx == dy) && (dy == dz)) && (dx > zero);
@@ -170,11 +169,7 @@ template <class L> void integrate_velocity_lanes(const IntegrateArgs& a, std::si
       w = vselect(solve, rotate_lanes(V3<L>{qx, qy, qz}, qw, wb - x), w);
     }
     w = w * ad;
-    // Only dynamic bodies move; the others' rows go back as they were.
-    const auto dynamic = r0.c[6] != zero;  // the flag's bits: 1 (a denormal, not zero) or 0
-    const L out[6] = {v.x, v.y, v.z, w.x, w.y, w.z};
-    for (int k = 0; k < 6; ++k) r0.c[k] = select(dynamic, out[k], r0.c[k]);
-    store_rows<L>(a.bodies, a.solver_index, i, kRowVw, r0);
+    store_vw(a.bodies, a.solver_index, i, r0, v, w);  // dynamic bodies only
   }
 }
 

@@ -57,8 +57,7 @@ template <class L> struct Pair {
 template <class L> inline Pair<L> load_pair(const ContactKernelArgs& a, const Lanes<L>& c, std::size_t i) {
   Pair<L> p;
   p.row_a = load_rows<L>(a.bodies, a.body_a, i, kRowVw), p.row_b = load_rows<L>(a.bodies, a.body_b, i, kRowVw);
-  p.va = {p.row_a.c[0], p.row_a.c[1], p.row_a.c[2]}, p.wa = {p.row_a.c[3], p.row_a.c[4], p.row_a.c[5]};
-  p.vb = {p.row_b.c[0], p.row_b.c[1], p.row_b.c[2]}, p.wb = {p.row_b.c[3], p.row_b.c[4], p.row_b.c[5]};
+  p.va = col3(p.row_a, 0), p.wa = col3(p.row_a, 3), p.vb = col3(p.row_b, 0), p.wb = col3(p.row_b, 3);
   p.ma = c.field(cf::kMassA), p.mb = c.field(cf::kMassB);
   return p;
 }
@@ -94,8 +93,8 @@ template <class L> void solve(const ContactKernelArgs& a, std::size_t i) {
   L ds = zero;
   if (biased) {
     const Rows8<L> ma = load_rows<L>(a.bodies, a.body_a, i, kRowMotion), mb = load_rows<L>(a.bodies, a.body_b, i, kRowMotion);
-    const V3<L> dpa{ma.c[0], ma.c[1], ma.c[2]}, dpb{mb.c[0], mb.c[1], mb.c[2]};
-    dth_a = {ma.c[3], ma.c[4], ma.c[5]}, dth_b = {mb.c[3], mb.c[4], mb.c[5]};
+    const V3<L> dpa = col3(ma, 0), dpb = col3(mb, 0);
+    dth_a = col3(ma, 3), dth_b = col3(mb, 3);
     ds = dot(dpb - dpa, n);
   }
   const auto immovable = p.ma == zero || p.mb == zero;
@@ -204,8 +203,7 @@ template <class L> void prepare(const detail::ContactPrepareArgs& a, std::size_t
   L ia[6], ib[6];
   for (uint32_t q = 0; q < 6; ++q) ia[q] = st.field(cf::kStageIa + q), ib[q] = st.field(cf::kStageIb + q);
   const Rows8<L> row_a = load_rows<L>(a.bodies, a.body_a, i, kRowVw), row_b = load_rows<L>(a.bodies, a.body_b, i, kRowVw);
-  const V3<L> va{row_a.c[0], row_a.c[1], row_a.c[2]}, wa{row_a.c[3], row_a.c[4], row_a.c[5]};
-  const V3<L> vb{row_b.c[0], row_b.c[1], row_b.c[2]}, wb{row_b.c[3], row_b.c[4], row_b.c[5]};
+  const V3<L> va = col3(row_a, 0), wa = col3(row_a, 3), vb = col3(row_b, 0), wb = col3(row_b, 3);
 
   // A deterministic friction basis from the normal alone (the same normal always gives the
   // same tangents, so impulses carried over from last step point the same way).

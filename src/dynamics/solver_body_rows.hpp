@@ -100,9 +100,13 @@ template <class L> inline Rows8<L> load_rows(const SolverBody* bodies, const uin
   return out;
 }
 
-// Writes all 8 floats of a row of every body idx[i..i+width) (the bodies must be distinct).
-template <class L> inline void store_rows(SolverBody* bodies, const uint32_t* idx, std::size_t i, std::size_t row, const Rows8<L>& in) {
+// Writes all 8 floats of a row of the bodies idx[i + k] whose bit k is set in `lanes` (the
+// bodies written must be distinct).
+template <class L>
+inline void store_rows(SolverBody* bodies, const uint32_t* idx, std::size_t i, std::size_t row, const Rows8<L>& in,
+                       uint32_t lanes = ~0u) {
   if constexpr (std::is_same_v<L, float>) {
+    if (!(lanes & 1u)) return;
     float* p = reinterpret_cast<float*>(bodies + idx[i]) + row;
     for (int f = 0; f < 8; ++f) p[f] = in.c[f];
   } else {
@@ -112,10 +116,12 @@ template <class L> inline void store_rows(SolverBody* bodies, const uint32_t* id
     transpose8(r);
     for (int k = 0; k < 8; ++k) {
 #if defined(GYRO_ARCH_AVX512)
-      _mm256_store_ps(row_ptr(bodies, idx[i + k], row), _mm512_castps512_ps256(r[k]));
-      _mm256_store_ps(row_ptr(bodies, idx[i + k + 8], row), _mm256_castpd_ps(_mm512_extractf64x4_pd(_mm512_castps_pd(r[k]), 1)));
+      if (lanes & (1u << k)) _mm256_store_ps(row_ptr(bodies, idx[i + k], row), _mm512_castps512_ps256(r[k]));
+      if (lanes & (1u << (k + 8)))
+        _mm256_store_ps(row_ptr(bodies, idx[i + k + 8], row),
+                        _mm256_castpd_ps(_mm512_extractf64x4_pd(_mm512_castps_pd(r[k]), 1)));
 #else
-      _mm256_store_ps(row_ptr(bodies, idx[i + k], row), r[k]);
+      if (lanes & (1u << k)) _mm256_store_ps(row_ptr(bodies, idx[i + k], row), r[k]);
 #endif
     }
 #else
@@ -123,11 +129,24 @@ template <class L> inline void store_rows(SolverBody* bodies, const uint32_t* id
     alignas(64) float buf[8][W];
     for (int f = 0; f < 8; ++f) store(buf[f], in.c[f]);
     for (std::size_t k = 0; k < W; ++k) {
+      if (!(lanes & (1u << k))) continue;
       float* p = reinterpret_cast<float*>(bodies + idx[i + k]) + row;
       for (int f = 0; f < 8; ++f) p[f] = buf[f][k];
     }
 #endif
   }
+}
+
+// Three consecutive floats of a row (v at 0, w at 3; dp at 0, dtheta at 3).
+template <class L> inline V3<L> col3(const Rows8<L>& r, int f) { return {r.c[f], r.c[f + 1], r.c[f + 2]}; }
+
+// Bit k set when body idx[i + k] is dynamic, from the flag lane of its first row as loaded.
+template <class L> inline uint32_t dynamic_lanes(const Rows8<L>& row) {
+  alignas(64) uint32_t bits[width_v<L>];
+  store_bits(bits, row.c[6]);
+  uint32_t lanes = 0;
+  for (std::size_t k = 0; k < width_v<L>; ++k) lanes |= (bits[k] != 0u ? 1u : 0u) << k;
+  return lanes;
 }
 
 // Writes v and w back to the dynamic bodies among idx[i..i+width) (a colour names each
@@ -136,43 +155,9 @@ template <class L> inline void store_rows(SolverBody* bodies, const uint32_t* id
 template <class L>
 inline void store_vw(SolverBody* bodies, const uint32_t* idx, std::size_t i, const Rows8<L>& row, const V3<L>& v,
                      const V3<L>& w) {
-  if constexpr (std::is_same_v<L, float>) {
-    SolverBody& b = bodies[idx[i]];
-    if (b.dynamic) b.v[0] = v.x, b.v[1] = v.y, b.v[2] = v.z, b.w[0] = w.x, b.w[1] = w.y, b.w[2] = w.z;
-  } else {
-#if defined(GYRO_ARCH_AVX512) || defined(GYRO_ARCH_AVX2)
-    RowReg r[8] = {v.x.v, v.y.v, v.z.v, w.x.v, w.y.v, w.z.v, row.c[6].v, row.c[7].v};
-#if defined(GYRO_ARCH_AVX512)
-    const unsigned dyn = _mm512_cmpneq_epi32_mask(_mm512_castps_si512(row.c[6].v), _mm512_setzero_si512());
-#else
-    const unsigned dyn = unsigned(_mm256_movemask_ps(
-        _mm256_castsi256_ps(_mm256_cmpeq_epi32(_mm256_castps_si256(row.c[6].v), _mm256_setzero_si256())))) ^ 0xFFu;
-#endif
-    transpose8(r);
-    for (int k = 0; k < 8; ++k) {
-#if defined(GYRO_ARCH_AVX512)
-      if (dyn & (1u << k)) _mm256_store_ps(row_ptr(bodies, idx[i + k], kRowVw), _mm512_castps512_ps256(r[k]));
-      if (dyn & (1u << (k + 8)))
-        _mm256_store_ps(row_ptr(bodies, idx[i + k + 8], kRowVw),
-                        _mm256_castpd_ps(_mm512_extractf64x4_pd(_mm512_castps_pd(r[k]), 1)));
-#else
-      if (dyn & (1u << k)) _mm256_store_ps(row_ptr(bodies, idx[i + k], kRowVw), r[k]);
-#endif
-    }
-#else
-    (void)row;
-    constexpr std::size_t W = width_v<L>;
-    alignas(64) float buf[6][W];
-    store(buf[0], v.x), store(buf[1], v.y), store(buf[2], v.z);
-    store(buf[3], w.x), store(buf[4], w.y), store(buf[5], w.z);
-    for (std::size_t k = 0; k < W; ++k) {
-      SolverBody& b = bodies[idx[i + k]];
-      if (!b.dynamic) continue;
-      b.v[0] = buf[0][k], b.v[1] = buf[1][k], b.v[2] = buf[2][k];
-      b.w[0] = buf[3][k], b.w[1] = buf[4][k], b.w[2] = buf[5][k];
-    }
-#endif
-  }
+  Rows8<L> out = row;
+  out.c[0] = v.x, out.c[1] = v.y, out.c[2] = v.z, out.c[3] = w.x, out.c[4] = w.y, out.c[5] = w.z;
+  store_rows(bodies, idx, i, kRowVw, out, dynamic_lanes(row));
 }
 
 }  // namespace gyro::GYRO_ARCH_NS
