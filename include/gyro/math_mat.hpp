@@ -211,8 +211,8 @@ constexpr M operator*(const M& a, float s) {
     for (int j = 0; j < detail::kOrder<M>; ++j) c.m[i][j] = a.m[i][j] * s;
   return c;
 }
-/// Every element times s.
-template <detail::Matrix M>
+/// Every element times s. (Constrained in a default template argument, as vec's.)
+template <class M, std::enable_if_t<detail::Matrix<M>, int> = 0>
 constexpr M operator*(float s, const M& a) {
   return a * s;
 }

@@ -123,8 +123,10 @@ template <detail::Vector V>
 constexpr V operator*(const V& a, float s) {
   return detail::map(a, [s](float p) { return p * s; });
 }
-/// Every component times s.
-template <detail::Vector V>
+/// Every component times s. (The constraint sits in a default template argument, not the
+/// template head: clang forms the function type operator*(float, const T&) before checking a
+/// template-head constraint, and `enum * size_t` (T = size_t) is then a hard error.)
+template <class V, std::enable_if_t<detail::Vector<V>, int> = 0>
 constexpr V operator*(float s, const V& a) {
   return detail::map(a, [s](float p) { return s * p; });
 }

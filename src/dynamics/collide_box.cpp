@@ -12,8 +12,14 @@
 // reference face's side planes (Sutherland-Hodgman, as Box2D Lite and Bullet); an edge axis
 // gives one point between the two supporting edges.
 //
+// The axis test itself is box_sat_lanes.hpp's, written once over lanes: collide_boxes() runs
+// its float instantiation, the narrowphase runs it over many pairs at once (box_sat.hpp) and
+// both finish in box_manifold().
+//
 // Determinism: a fixed sequence of + - * / sqrt and comparisons; every tie goes to the first
 // candidate in a fixed order.
+#include "dynamics/box_sat.hpp"
+#include "dynamics/box_sat_lanes.hpp"
 #include "dynamics/narrowphase.hpp"
 
 #include <cmath>
@@ -27,18 +33,17 @@ namespace {
 constexpr float kDepthTie = 1e-5f;
 constexpr float kRelTie = 1e-3f;
 constexpr int kMaxClip = 12;  // a quad clipped by 4 planes has at most 8 vertices
-constexpr float kInf = __builtin_inff();
 
 float largest(const float e[3]) { return gyro::max(e[0], gyro::max(e[1], e[2])); }
 
 // Face contact with face `axis` of box ref (outward normal sign * axis) as reference and the
 // most opposed face of box inc as incident face. id_flag is kFeatureRefB when ref is b.
-void box_face_contact(const OBB& ref, const BoxAxes& rf, int axis, float sign, const OBB& inc, const BoxAxes& in,
-                      float margin, uint32_t id_flag, Manifold* out) {
+void box_face_contact(const vec3& ref_center, const BoxAxes& rf, int axis, float sign, const vec3& inc_center,
+                      const BoxAxes& in, float margin, uint32_t id_flag, Manifold* out) {
   ClipSide sides[4];
-  const FaceFrame f = box_face_frame(ref, rf, axis, sign, sides);
+  const FaceFrame f = box_face_frame(ref_center, rf, axis, sign, sides);
   ClipVertex poly[4];
-  const uint32_t inc_face = box_incident_face(in, inc.center - ref.center, f, poly);
+  const uint32_t inc_face = box_incident_face(in, inc_center - ref_center, f, poly);
   const uint32_t ref_face = 2u * uint32_t(axis) + (sign < 0.0f ? 1u : 0u);
   clip_face_contact(f, poly, 4, sides, 4, margin, id_flag | ref_face << 9 | inc_face << 6, out);
 }
@@ -144,10 +149,10 @@ uint32_t box_support_edge(const BoxAxes& box, int k, const vec3& dir, vec3* cent
   return code;
 }
 
-FaceFrame box_face_frame(const OBB& box, const BoxAxes& axes, int axis, float sign, ClipSide* sides) {
+FaceFrame box_face_frame(const vec3& center, const BoxAxes& axes, int axis, float sign, ClipSide* sides) {
   const int k1 = (axis + 1) % 3, k2 = (axis + 2) % 3;
   FaceFrame f;
-  f.origin = box.center;
+  f.origin = center;
   f.t1 = axes.u[k1];
   f.t2 = axes.u[k2];
   f.normal = axes.u[axis] * sign;
@@ -239,73 +244,53 @@ void edge_contact(const vec3& origin, const vec3& pa, const vec3& ha, const vec3
   out->count = 1;
 }
 
-void collide_boxes(const OBB& a, const OBB& b, float margin, Manifold* out) {
+void box_manifold(const vec3& ca, const BoxAxes& fa, const vec3& cb, const BoxAxes& fb, const BoxSat& sat, float margin,
+                  Manifold* out) {
   out->count = 0;
-  const BoxAxes fa = box_axes(a), fb = box_axes(b);
-  const vec3 d = b.center - a.center;
-  float ar[3][3];  // |a_i . b_j|
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) ar[i][j] = std::abs(dot(fa.u[i], fb.u[j]));
-
-  // Each axis's separation: the gap between the boxes' projections (< 0: overlap).
-  float sa = -kInf, sb = -kInf, se = -kInf;
-  int ia = 0, jb = 0, ie = -1, je = -1;
-  vec3 edge_normal;
-  for (int i = 0; i < 3; ++i) {
-    const float rb = (fb.e[0] * ar[i][0] + fb.e[1] * ar[i][1]) + fb.e[2] * ar[i][2];
-    const float s = std::abs(dot(d, fa.u[i])) - (fa.e[i] + rb);
-    if (!(s < margin)) return;
-    if (s > sa) sa = s, ia = i;
-  }
-  for (int j = 0; j < 3; ++j) {
-    const float ra = (fa.e[0] * ar[0][j] + fa.e[1] * ar[1][j]) + fa.e[2] * ar[2][j];
-    const float s = std::abs(dot(d, fb.u[j])) - (ra + fb.e[j]);
-    if (!(s < margin)) return;
-    if (s > sb) sb = s, jb = j;
-  }
-  for (int i = 0; i < 3; ++i) {
-    const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
-    for (int j = 0; j < 3; ++j) {
-      const vec3 c = cross(fa.u[i], fb.u[j]);
-      const float len_sq = dot(c, c);
-      if (len_sq < kParallelSq) continue;
-      // The projection radii along c (not normalised): |a_k . (a_i x b_j)| is |a_i' . b_j|
-      // for the third axis i', so they come from the face terms.
-      const int j1 = (j + 1) % 3, j2 = (j + 2) % 3;
-      const float ra = fa.e[i1] * ar[i2][j] + fa.e[i2] * ar[i1][j];
-      const float rb = fb.e[j1] * ar[i][j2] + fb.e[j2] * ar[i][j1];
-      const float len = std::sqrt(len_sq);
-      const float dist = dot(d, c);
-      const float s = (std::abs(dist) - (ra + rb)) / len;
-      if (!(s < margin)) return;
-      if (s > se) se = s, ie = i, je = j, edge_normal = c * ((dist < 0.0f ? -1.0f : 1.0f) / len);
-    }
-  }
-
+  if (!sat.hit) return;
+  const vec3 d = cb - ca;
   const float size = gyro::min(largest(fa.e), largest(fb.e));
-  const bool ref_b = clearly_larger(sb, sa, kFaceRelTol, kFaceAbsTol * size);
-  const float sf = ref_b ? sb : sa;
+  const bool ref_b = clearly_larger(sat.sb, sat.sa, kFaceRelTol, kFaceAbsTol * size);
+  const float sf = ref_b ? sat.sb : sat.sa;
+  const int ie = sat.ie, je = sat.je;
   auto edges = [&] {
     vec3 pa, pb;
-    const uint32_t ea = box_support_edge(fa, ie, edge_normal, &pa);
-    const uint32_t eb = box_support_edge(fb, je, -edge_normal, &pb);
-    out->normal = edge_normal;
-    edge_contact(a.center, pa, fa.u[ie] * fa.e[ie], d + pb, fb.u[je] * fb.e[je], se, kFeatureEdge | ea << 4 | eb, out);
+    const uint32_t ea = box_support_edge(fa, ie, sat.edge_normal, &pa);
+    const uint32_t eb = box_support_edge(fb, je, -sat.edge_normal, &pb);
+    out->normal = sat.edge_normal;
+    edge_contact(ca, pa, fa.u[ie] * fa.e[ie], d + pb, fb.u[je] * fb.e[je], sat.se, kFeatureEdge | ea << 4 | eb, out);
   };
-  if (ie >= 0 && clearly_larger(se, sf, kEdgeRelTol, kEdgeAbsTol * size)) return edges();
+  if (ie >= 0 && clearly_larger(sat.se, sf, kEdgeRelTol, kEdgeAbsTol * size)) return edges();
 
   if (ref_b) {
-    const float sign = dot(d, fb.u[jb]) < 0.0f ? 1.0f : -1.0f;  // b's face towards a
-    box_face_contact(b, fb, jb, sign, a, fa, margin, kFeatureRefB, out);
-    out->normal = fb.u[jb] * -sign;
+    const float sign = dot(d, fb.u[sat.jb]) < 0.0f ? 1.0f : -1.0f;  // b's face towards a
+    box_face_contact(cb, fb, sat.jb, sign, ca, fa, margin, kFeatureRefB, out);
+    out->normal = fb.u[sat.jb] * -sign;
   } else {
-    const float sign = dot(d, fa.u[ia]) < 0.0f ? -1.0f : 1.0f;  // a's face towards b
-    box_face_contact(a, fa, ia, sign, b, fb, margin, 0, out);
-    out->normal = fa.u[ia] * sign;
+    const float sign = dot(d, fa.u[sat.ia]) < 0.0f ? -1.0f : 1.0f;  // a's face towards b
+    box_face_contact(ca, fa, sat.ia, sign, cb, fb, margin, 0, out);
+    out->normal = fa.u[sat.ia] * sign;
   }
   // Rounding at the rim of the reference face can clip a grazing incident face away;
   // then the best edge pair, if any, still gives a point.
   if (out->count == 0 && ie >= 0) edges();
+}
+
+void collide_boxes(const OBB& a, const OBB& b, float margin, Manifold* out) {
+  const BoxAxes fa = box_axes(a), fb = box_axes(b);
+  arch_scalar::BoxLanes<float> la, lb;
+  for (int k = 0; k < 3; ++k) {
+    la.u[k] = {fa.u[k].x, fa.u[k].y, fa.u[k].z}, la.e[k] = fa.e[k];
+    lb.u[k] = {fb.u[k].x, fb.u[k].y, fb.u[k].z}, lb.e[k] = fb.e[k];
+  }
+  const vec3 d = b.center - a.center;
+  const arch_scalar::BoxSatLanes<float> r = arch_scalar::box_sat(la, lb, {d.x, d.y, d.z}, margin);
+  BoxSat sat;
+  sat.hit = r.hit;
+  sat.sa = r.sa, sat.sb = r.sb, sat.se = r.se;
+  sat.ia = int(r.ia), sat.jb = int(r.jb), sat.ie = int(r.ie), sat.je = int(r.je);
+  sat.edge_normal = {r.edge_normal.x, r.edge_normal.y, r.edge_normal.z};
+  box_manifold(a.center, fa, b.center, fb, sat, margin, out);
 }
 
 void collide_box_plane(const OBB& a, const Plane& b, float margin, Manifold* out) {

@@ -190,7 +190,7 @@ void collide_box_triangle(const OBB& a, const Triangle& b, float margin, Manifol
   if (ref_box) {
     // The box face towards the triangle; the triangle is the incident polygon.
     ClipSide sides[4];
-    const FaceFrame f = box_face_frame(a, box, kb, side_b, sides);
+    const FaceFrame f = box_face_frame(a.center, box, kb, side_b, sides);
     ClipVertex poly[3];
     for (int k = 0; k < 3; ++k)
       poly[k] = {dot(t.v[k], f.t1), dot(t.v[k], f.t2), dot(t.v[k], f.normal), uint8_t((k + 2) % 3), uint8_t(k)};

@@ -2,6 +2,7 @@
 
 #include "core/parallel.hpp"
 #include "dynamics/body_bounds.hpp"
+#include "dynamics/box_sat.hpp"
 #include "dynamics/narrowphase.hpp"
 #include "gyro/triangle_mesh.hpp"
 
@@ -25,6 +26,61 @@ Plane plane_of(const BodyStore& s, uint32_t i) {
 }
 
 void flip(Manifold* m) { m->normal = -m->normal; }
+
+bool is_box(const BodyStore& s, uint32_t slot) { return s.shape[slot] == uint32_t(BodyShape::box); }
+
+// The box-box pairs of a narrowphase chunk, staged for the separating axis kernel: columns
+// of kPairChunk floats (box_sat.hpp), padded with zeros to a whole batch at every level.
+struct BoxPairBatch {
+  static constexpr uint32_t kNone = ~0u;
+  static constexpr std::size_t kPad = 16;  // the widest lane
+  alignas(64) float in[kSatInputs * kPairChunk];
+  alignas(64) float out[kSatOutputs * kPairChunk];
+  uint32_t lane[kPairChunk];  // per pair of the chunk: its lane, or kNone
+  std::size_t count = 0;
+
+  void stage(const BodyStore& s, uint32_t a, uint32_t b, float margin) {
+    const std::size_t k = count++;
+    const mat3 ra = to_mat3(s.orientation(a)), rb = to_mat3(s.orientation(b));
+    for (uint32_t r = 0; r < 3; ++r)
+      for (uint32_t c = 0; c < 3; ++c) {
+        in[(kSatUa + 3 * r + c) * kPairChunk + k] = ra.m[r][c];
+        in[(kSatUb + 3 * r + c) * kPairChunk + k] = rb.m[r][c];
+      }
+    const float ea[3] = {s.hx[a], s.hy[a], s.hz[a]}, eb[3] = {s.hx[b], s.hy[b], s.hz[b]};
+    const vec3 d = s.position(b) - s.position(a);
+    const float dv[3] = {d.x, d.y, d.z};
+    for (uint32_t c = 0; c < 3; ++c) {
+      in[(kSatEa + c) * kPairChunk + k] = ea[c];
+      in[(kSatEb + c) * kPairChunk + k] = eb[c];
+      in[(kSatD + c) * kPairChunk + k] = dv[c];
+    }
+    in[kSatMargin * kPairChunk + k] = margin;
+  }
+  void run() {
+    const std::size_t padded = (count + kPad - 1) / kPad * kPad;
+    for (uint32_t c = 0; c < kSatInputs; ++c)
+      for (std::size_t k = count; k < padded; ++k) in[c * kPairChunk + k] = 0.0f;
+    GYRO_DISPATCH(box_sat_batch)(BoxSatArgs{in, out, kPairChunk}, 0, padded);
+  }
+  // The manifold of the pair in lane k (slots a, b), as collide_boxes() gives it.
+  void finish(const BodyStore& s, uint32_t a, uint32_t b, std::size_t k, Manifold* m) const {
+    auto col = [&](uint32_t c) { return c * kPairChunk + k; };
+    BoxAxes fa, fb;
+    for (uint32_t r = 0; r < 3; ++r) {
+      fa.u[r] = {in[col(kSatUa + 3 * r)], in[col(kSatUa + 3 * r + 1)], in[col(kSatUa + 3 * r + 2)]};
+      fb.u[r] = {in[col(kSatUb + 3 * r)], in[col(kSatUb + 3 * r + 1)], in[col(kSatUb + 3 * r + 2)]};
+      fa.e[r] = in[col(kSatEa + r)], fb.e[r] = in[col(kSatEb + r)];
+    }
+    BoxSat sat;
+    sat.hit = out[col(kSatHit)] != 0.0f;
+    sat.sa = out[col(kSatSa)], sat.sb = out[col(kSatSb)], sat.se = out[col(kSatSe)];
+    sat.ia = int(out[col(kSatIa)]), sat.jb = int(out[col(kSatJb)]);
+    sat.ie = int(out[col(kSatIe)]), sat.je = int(out[col(kSatJe)]);
+    sat.edge_normal = {out[col(kSatNormal)], out[col(kSatNormal + 1)], out[col(kSatNormal + 2)]};
+    box_manifold(s.position(a), fa, s.position(b), fb, sat, in[col(kSatMargin)], m);
+  }
+};
 
 bool needs_generic(uint32_t shape) { return shape == uint32_t(BodyShape::capsule) || shape == uint32_t(BodyShape::hull); }
 
@@ -190,13 +246,28 @@ void ContactSet::update(const BodyStore& s, const std::vector<CandidatePair>& pa
   if (scratch_.size() < total) scratch_.resize(total);
 
   // 2. Narrowphase, in parallel over fixed chunks of pairs: each pair writes its own range.
+  // Box-box pairs run their separating axis tests in lanes first (box_sat.hpp).
   parallel_for(np, kPairChunk, [&](std::size_t begin, std::size_t end) {
+    BoxPairBatch boxes;
+    for (std::size_t i = begin; i < end; ++i) {
+      const uint32_t a = pairs[i].a, b = pairs[i].b;
+      boxes.lane[i - begin] = BoxPairBatch::kNone;
+      if (!is_box(s, a) || !is_box(s, b)) continue;
+      boxes.lane[i - begin] = uint32_t(boxes.count);
+      boxes.stage(s, a, b, motion_margin(s, a, b, set));
+    }
+    if (boxes.count > 0) boxes.run();
     for (std::size_t i = begin; i < end; ++i) {
       const uint32_t a = pairs[i].a, b = pairs[i].b;
       ContactRecord* out = scratch_.data() + pair_first_[i];
-      const float margin = motion_margin(s, a, b, set);
+      const uint32_t lane = boxes.lane[i - begin];
+      const float margin = lane != BoxPairBatch::kNone ? 0.0f : motion_margin(s, a, b, set);
       uint32_t n;
-      if (is_mesh(s, b)) {
+      if (lane != BoxPairBatch::kNone) {
+        out->sub = 0;
+        boxes.finish(s, a, b, lane, &out->manifold);
+        n = out->manifold.count > 0 ? 1 : 0;
+      } else if (is_mesh(s, b)) {
         n = collide_mesh(s, a, b, margin, out, kMaxMeshManifolds);
       } else if (is_mesh(s, a)) {
         n = collide_mesh(s, b, a, margin, out, kMaxMeshManifolds);

@@ -127,7 +127,7 @@ struct ClipSide {
 };
 /// The frame of the box face with outward normal sign * u[axis] and its four side planes
 /// (codes 4 + j: +t1, -t1, +t2, -t2).
-FaceFrame box_face_frame(const OBB& box, const BoxAxes& axes, int axis, float sign, ClipSide* sides);
+FaceFrame box_face_frame(const vec3& center, const BoxAxes& axes, int axis, float sign, ClipSide* sides);
 /// The face of a box most opposed to frame.normal (the first of nearly equal ones), as a
 /// polygon in the frame with edge codes 0-3, the box centre being `center` relative to
 /// frame.origin. Returns the face's index (2 axis + 1 on the negative side).

@@ -3,12 +3,14 @@
 // motions; a seeded property test of box-box against the separating axis test (gyro's
 // overlaps() and obb_separation_pairwise(), and a binary64 15-axis reference); and
 // TriangleMesh::triangles_overlapping against brute force.
+#include "dynamics/box_sat.hpp"
 #include "dynamics/narrowphase.hpp"
 #include "gyro/batch_overlap.hpp"
 #include "gyro/math_quat.hpp"
 #include "gyro/mesh.hpp"
 #include "gyro/overlap.hpp"
 #include "gyro/point_tests.hpp"
+#include "gyro/runtime.hpp"
 #include "gyro/triangle.hpp"
 #include "gyro/triangle_mesh.hpp"
 #include "random_shapes.hpp"
@@ -17,6 +19,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <set>
 #include <vector>
@@ -494,6 +497,91 @@ TEST(NarrowphaseBoxes, RandomPairsAgreeWithSeparatingAxes) {
   EXPECT_GT(overlapping, 1000);
   EXPECT_GT(separated, 500);
   EXPECT_GT(exact, 4 * preferred);
+}
+
+// The narrowphase runs box-box separating axis tests one pair per lane (box_sat.hpp) and
+// builds the manifold from the lanes' result: at every level, every bit of collide_boxes().
+// Pairs: random, resting face on face (a's or b's face nearly tied), parallel and nearly
+// parallel edges (around the cross axis cut-off), zero extents, far from the origin, apart.
+TEST(NarrowphaseBoxes, LaneTestsGiveCollideBoxesBitsAtEveryLevel) {
+  SplitMix64 rng(0xb0c5'5a71);
+  auto u = [&](float lo, float hi) { return lo + (hi - lo) * float(rng.u()); };
+  constexpr std::size_t kPairs = 3000, kStride = kPairs + 16;
+  std::vector<OBB> a(kPairs), b(kPairs);
+  std::vector<float> margin(kPairs);
+  for (std::size_t n = 0; n < kPairs; ++n) {
+    const vec3 c = n % 13 == 0 ? vec3{u(-1e5f, 1e5f), u(-1e3f, 1e3f), 3e4f} : vec3{u(-2, 2), u(-2, 2), u(-2, 2)};
+    auto extent = [&] { return n % 17 == 0 ? 0.0f : u(0.05f, 1.2f); };
+    a[n] = box(c, {extent(), extent(), extent()}, testing::random_rotation(rng));
+    b[n] = box(c + vec3{u(-1.8f, 1.8f), u(-1.8f, 1.8f), u(-1.8f, 1.8f)}, {extent(), extent(), extent()},
+               testing::random_rotation(rng));
+    if (n % 5 == 1) b[n].orientation = a[n].orientation;
+    if (n % 5 == 2) b[n].orientation = rotation({u(-1, 1), 1, u(-1, 1)}, u(0.0f, 0.2f)) * a[n].orientation;
+    if (n % 5 == 3) {  // resting: b on a's top face, shifted sideways
+      b[n].orientation = rotation({0, 1, 0}, u(-3, 3)) * a[n].orientation;
+      const vec3 up{a[n].orientation.m[1][0], a[n].orientation.m[1][1], a[n].orientation.m[1][2]};
+      b[n].center = a[n].center + up * (a[n].half_extents.y + b[n].half_extents.y + u(-0.01f, 0.01f)) +
+                    vec3{a[n].orientation.m[0][0], a[n].orientation.m[0][1], a[n].orientation.m[0][2]} * u(-0.8f, 0.8f);
+    }
+    margin[n] = n % 3 == 0 ? 0.0f : (n % 3 == 1 ? 0.02f : 0.2f);
+  }
+  // Staged as the narrowphase stages them.
+  std::vector<float> in(kSatInputs * kStride, 0.0f);
+  for (std::size_t n = 0; n < kPairs; ++n) {
+    for (uint32_t r = 0; r < 3; ++r)
+      for (uint32_t c = 0; c < 3; ++c) {
+        in[(kSatUa + 3 * r + c) * kStride + n] = a[n].orientation.m[r][c];
+        in[(kSatUb + 3 * r + c) * kStride + n] = b[n].orientation.m[r][c];
+      }
+    const vec3 d = b[n].center - a[n].center;
+    for (uint32_t c = 0; c < 3; ++c) {
+      in[(kSatEa + c) * kStride + n] = a[n].half_extents[c];
+      in[(kSatEb + c) * kStride + n] = b[n].half_extents[c];
+      in[(kSatD + c) * kStride + n] = d[c];
+    }
+    in[kSatMargin * kStride + n] = margin[n];
+  }
+  auto bits = [](float f) { return std::bit_cast<uint32_t>(f); };
+  int ran = 0;
+  for (SimdLevel level : {SimdLevel::scalar, SimdLevel::sse2, SimdLevel::avx2, SimdLevel::avx512, SimdLevel::neon}) {
+    if (!simd_level_available(level)) continue;
+    ++ran;
+    std::vector<float> out(kSatOutputs * kStride, -7.0f);
+    box_sat_batch_for(level)(BoxSatArgs{in.data(), out.data(), kStride}, 0, kPairs);
+    int touching = 0, edges = 0, ref_b = 0, differ = 0;
+    for (std::size_t n = 0; n < kPairs; ++n) {
+      auto o = [&](uint32_t c) { return out[c * kStride + n]; };
+      BoxSat sat;
+      sat.hit = o(kSatHit) != 0.0f;
+      sat.sa = o(kSatSa), sat.sb = o(kSatSb), sat.se = o(kSatSe);
+      sat.ia = int(o(kSatIa)), sat.jb = int(o(kSatJb)), sat.ie = int(o(kSatIe)), sat.je = int(o(kSatJe));
+      sat.edge_normal = {o(kSatNormal), o(kSatNormal + 1), o(kSatNormal + 2)};
+      Manifold got, want;
+      box_manifold(a[n].center, box_axes(a[n]), b[n].center, box_axes(b[n]), sat, margin[n], &got);
+      collide_boxes(a[n], b[n], margin[n], &want);
+      bool same = got.count == want.count;
+      if (same && want.count > 0)
+        same = bits(got.normal.x) == bits(want.normal.x) && bits(got.normal.y) == bits(want.normal.y) &&
+               bits(got.normal.z) == bits(want.normal.z);
+      for (uint32_t k = 0; same && k < want.count; ++k) {
+        const ContactPoint &p = got.points[k], &q = want.points[k];
+        same = p.feature_id == q.feature_id && bits(p.separation) == bits(q.separation) &&
+               bits(p.position.x) == bits(q.position.x) && bits(p.position.y) == bits(q.position.y) &&
+               bits(p.position.z) == bits(q.position.z);
+      }
+      differ += !same;
+      touching += want.count > 0;
+      edges += want.count > 0 && (want.points[0].feature_id & kFeatureEdge) != 0;
+      ref_b += want.count > 0 && (want.points[0].feature_id & kFeatureRefB) != 0;
+    }
+    EXPECT_EQ(differ, 0) << simd_level_name(level);
+    // The sample reaches every branch of the manifold: apart, face on a, face on b, edges.
+    EXPECT_GT(touching, 1000) << simd_level_name(level);
+    EXPECT_LT(touching, 2900) << simd_level_name(level);
+    EXPECT_GT(edges, 50) << simd_level_name(level);
+    EXPECT_GT(ref_b, 100) << simd_level_name(level);
+  }
+  EXPECT_GE(ran, 1);
 }
 
 TEST(NarrowphaseBoxes, ZeroExtentsAndFarFromOrigin) {
