@@ -16,7 +16,7 @@ namespace detail {
 struct IntegrateArgs {
   SolverBody* bodies = nullptr;
   const uint32_t* solver_index = nullptr;  ///< 0, 1, 2, ...: solver body b is lane b
-  const uint32_t* slot_of_body = nullptr;  ///< solver body -> body store slot
+  const uint32_t* slot_of_body = nullptr;  ///< solver body -> body store slot (ascending)
   float *px = nullptr, *py = nullptr, *pz = nullptr;
   float *qx = nullptr, *qy = nullptr, *qz = nullptr, *qw = nullptr;
   float h = 0.0f;

@@ -142,6 +142,17 @@ template <class L> inline V3<L> col3(const Rows8<L>& r, int f) { return {r.c[f],
 
 // Bit k set when body idx[i + k] is dynamic, from the flag lane of its first row as loaded.
 template <class L> inline uint32_t dynamic_lanes(const Rows8<L>& row) {
+#if defined(GYRO_ARCH_AVX512)
+  if constexpr (!std::is_same_v<L, float>) {  // one integer compare into a mask register
+    const __m512i flag = _mm512_castps_si512(row.c[6].v);
+    return uint32_t(_mm512_cmpneq_epi32_mask(flag, _mm512_setzero_si512()));
+  }
+#elif defined(GYRO_ARCH_AVX2)
+  if constexpr (!std::is_same_v<L, float>) {
+    const __m256i zero_flag = _mm256_cmpeq_epi32(_mm256_castps_si256(row.c[6].v), _mm256_setzero_si256());
+    return ~uint32_t(_mm256_movemask_ps(_mm256_castsi256_ps(zero_flag))) & 0xFFu;
+  }
+#endif
   alignas(64) uint32_t bits[width_v<L>];
   store_bits(bits, row.c[6]);
   uint32_t lanes = 0;
