@@ -546,6 +546,48 @@ uint64_t scene_soft_cloth() {
   return h.digest();
 }
 
+// Six box pyramids of base 12 (468 boxes) on a ground box, with spheres dropped among them:
+// large enough that the narrowphase runs many chunks of box pairs through the lane
+// separating axis test and that the solver cuts its colours (~200 constraints each) into
+// several chunks at 2, 3 and 8 threads. Hashes the world every 10 of 40 steps.
+uint64_t scene_world_pyramids() {
+  detail::StateHasher h;
+  WorldDef def;
+  def.enable_sleep = false;
+  std::unique_ptr<World> w;
+  if (World::create(def, &w) != Status::ok) return 0;
+  BodyId id;
+  BodyDef ground;
+  ground.type = BodyType::static_body;
+  ground.shape.half_extents = {40.0f, 0.5f, 40.0f};
+  ground.position = {0.0f, -0.5f, 0.0f};
+  if (w->create_body(ground, &id) != Status::ok) return 0;
+  for (int p = 0; p < 6; ++p) {
+    const float cx = -15.0f + 15.0f * float(p % 3), cz = p < 3 ? -6.0f : 6.0f;
+    for (int row = 0; row < 12; ++row)
+      for (int k = 0; k < 12 - row; ++k) {
+        BodyDef b;
+        b.shape.half_extents = {0.5f, 0.5f, 0.5f};
+        b.position = {cx + (float(k) - float(11 - row) * 0.5f) * 1.05f, 0.5f + float(row), cz + 0.01f * float(p)};
+        if (w->create_body(b, &id) != Status::ok) return 0;
+      }
+  }
+  SplitMix64 rng(4242);
+  for (int k = 0; k < 12; ++k) {
+    BodyDef b;
+    b.shape.type = BodyShape::sphere;
+    b.shape.radius = 0.3f + 0.2f * float(rng.u());
+    b.position = {30.0f * float(rng.u()) - 15.0f, 13.0f + 2.0f * float(rng.u()), 12.0f * float(rng.u()) - 6.0f};
+    b.linear_velocity = {0.0f, -4.0f, 0.0f};
+    if (w->create_body(b, &id) != Status::ok) return 0;
+  }
+  for (int step = 1; step <= 40; ++step) {
+    if (w->step(1.0f / 60.0f) != Status::ok) return 0;
+    if (step % 10 == 0) h.add_u64(w->hash());
+  }
+  return h.digest();
+}
+
 // Capsules and hulls (cubes, prisms, random point clouds) with spheres and boxes on a plane,
 // a mesh ramp and each other, under both convex manifold models; a hull destroyed midway.
 uint64_t scene_convex_bodies() {
@@ -665,6 +707,7 @@ const DetScene kScenes[] = {
     {"world_particles", scene_world_particles, 0x8e3766db8d8855a1ull},
     {"soft_cloth", scene_soft_cloth, 0x4b131c88424dd139ull},
     {"convex_bodies", scene_convex_bodies, 0x45809748c4eecc2eull},
+    {"world_pyramids", scene_world_pyramids, 0x184939cea7259187ull},
     {"snapshot_restore", scene_snapshot_restore, 0x5a7ce78bef94a882ull},
 #endif
 };
