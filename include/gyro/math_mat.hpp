@@ -204,14 +204,14 @@ constexpr M operator-(const M& a, const M& b) {
   return c;
 }
 /// Every element times s.
-template <detail::Matrix M>
+template <class M, std::enable_if_t<detail::Matrix<M>, int> = 0>
 constexpr M operator*(const M& a, float s) {
   M c;
   for (int i = 0; i < detail::kOrder<M>; ++i)
     for (int j = 0; j < detail::kOrder<M>; ++j) c.m[i][j] = a.m[i][j] * s;
   return c;
 }
-/// Every element times s. (Constrained in a default template argument, as vec's.)
+/// Every element times s. (Constraints on the float operators: see math_vec.hpp.)
 template <class M, std::enable_if_t<detail::Matrix<M>, int> = 0>
 constexpr M operator*(float s, const M& a) {
   return a * s;

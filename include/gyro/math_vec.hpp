@@ -98,6 +98,11 @@ constexpr V map(const V& a, F f) {
 
 }  // namespace detail
 
+// The operators that take a float beside the vector carry their constraint in a default
+// template argument, not the template head: clang forms the function type (say
+// operator*(const T&, float)) before checking a template-head constraint, and for
+// `int * enum` or `enum * size_t` (T = int, size_t) that type is a hard error.
+
 /// Component-wise sum.
 template <detail::Vector V>
 constexpr V operator+(const V& a, const V& b) {
@@ -119,19 +124,17 @@ constexpr V operator/(const V& a, const V& b) {
   return detail::zip(a, b, [](float p, float q) { return p / q; });
 }
 /// Every component times s.
-template <detail::Vector V>
+template <class V, std::enable_if_t<detail::Vector<V>, int> = 0>
 constexpr V operator*(const V& a, float s) {
   return detail::map(a, [s](float p) { return p * s; });
 }
-/// Every component times s. (The constraint sits in a default template argument, not the
-/// template head: clang forms the function type operator*(float, const T&) before checking a
-/// template-head constraint, and `enum * size_t` (T = size_t) is then a hard error.)
+/// Every component times s.
 template <class V, std::enable_if_t<detail::Vector<V>, int> = 0>
 constexpr V operator*(float s, const V& a) {
   return detail::map(a, [s](float p) { return s * p; });
 }
 /// Every component divided by s (a true division per component, not a reciprocal product).
-template <detail::Vector V>
+template <class V, std::enable_if_t<detail::Vector<V>, int> = 0>
 constexpr V operator/(const V& a, float s) {
   return detail::map(a, [s](float p) { return p / s; });
 }

@@ -28,17 +28,17 @@ void integrate_one(const IntegrateArgs& a, std::size_t b) {
 // Solver bodies are numbered in ascending slot order, so a batch whose first and last slots
 // are width - 1 apart covers consecutive slots: one vector load or store instead of a lane
 // at a time (whose narrow stores a wide load cannot forward from).
-inline bool consecutive(const uint32_t* slots, std::size_t i, std::size_t width) {
-  return slots[i + width - 1] - slots[i] == width - 1;
+template <class L> bool consecutive(const uint32_t* slots, std::size_t i) {
+  return slots[i + width_v<L> - 1] - slots[i] == width_v<L> - 1;
 }
 template <class L> L gather_slots(const float* column, const uint32_t* slots, std::size_t i) {
-  if (consecutive(slots, i, width_v<L>)) return load<L>(column + slots[i]);
+  if (consecutive<L>(slots, i)) return load<L>(column + slots[i]);
   alignas(64) float buf[width_v<L>];
   for (std::size_t k = 0; k < width_v<L>; ++k) buf[k] = column[slots[i + k]];
   return load<L>(buf);
 }
 template <class L> void scatter_slots(float* column, const uint32_t* slots, std::size_t i, L value) {
-  if (consecutive(slots, i, width_v<L>)) return store(column + slots[i], value);
+  if (consecutive<L>(slots, i)) return store(column + slots[i], value);
   alignas(64) float buf[width_v<L>];
   store(buf, value);
   for (std::size_t k = 0; k < width_v<L>; ++k) column[slots[i + k]] = buf[k];
