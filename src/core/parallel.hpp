@@ -45,8 +45,9 @@ template <class F> void parallel_for(std::size_t n, std::size_t chunk, F&& fn) {
 /// of them and a barrier between stages, instead of a region per loop (a solver sub-step of a
 /// dozen colours would otherwise pay a dozen forks). Stage s has *n elements cut into fixed
 /// chunks of *chunk (set by shape(s)); fn(s, begin, end) runs once per chunk. Results never
-/// depend on the thread count for the same reason as parallel_for's. With one thread, or
-/// when no stage has min_chunks chunks, everything runs on the calling thread in order.
+/// depend on the thread count for the same reason as parallel_for's. Chunk k of every stage
+/// runs on thread k % threads (static schedule: locality from stage to stage). With one
+/// thread, or when no stage has min_chunks chunks, everything runs on the calling thread in order.
 using StageShapeFn = void (*)(void* context, std::size_t stage, std::size_t* n, std::size_t* chunk);
 using StageFn = void (*)(void* context, std::size_t stage, std::size_t begin, std::size_t end);
 void parallel_stages_erased(std::size_t stages, std::size_t min_chunks, StageShapeFn shape, StageFn fn, void* context);

@@ -23,6 +23,7 @@ using Clock = std::chrono::steady_clock;
 double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
 
 constexpr std::size_t kBodyChunk = 2048;  // integration is ~20 ns a body: smaller chunks cost more than they save
+constexpr std::size_t kMinIntegrateChunk = 256;  // ~5 us of integration: well above a fork and join
 
 }  // namespace
 
@@ -205,17 +206,25 @@ detail::IntegrateArgs World::Impl::integrate_args(float h) {
   return args;
 }
 
-void World::Impl::integrate_velocities(float h) {
+// The sub-step's integrations split the solver bodies the way the contact passes split
+// their colours: one chunk per thread, statically assigned (thread k always takes chunk k).
+// Constraints are ordered by body id, so chunk k of every colour mostly touches the bodies
+// of chunk k here, and a body's row stays in one core's cache through the sub-step instead
+// of moving to the calling thread for every integration (measured on 16 pyramids, 2
+// threads: the solver stage took ~15% longer with integration on one thread).
+void World::Impl::integrate_split(integrate_positions_fn* kernel, float h) {
   const detail::IntegrateArgs args = integrate_args(h);
-  integrate_positions_fn* const kernel = GYRO_DISPATCH(integrate_velocities);
-  detail::parallel_for(slot_of_body.size(), kBodyChunk, [&](std::size_t begin, std::size_t end) { kernel(args, begin, end); });
+  const std::size_t m = slot_of_body.size(), threads = thread_count() > 0 ? thread_count() : 1;
+  const std::size_t per_thread = (m + threads - 1) / threads;
+  const std::size_t chunk = std::max<std::size_t>(kMinIntegrateChunk, (per_thread + 15) / 16 * 16);
+  detail::parallel_stages(
+      1, 2, [&](std::size_t, std::size_t* n, std::size_t* c) { *n = m, *c = chunk; },
+      [&](std::size_t, std::size_t begin, std::size_t end) { kernel(args, begin, end); });
 }
 
-void World::Impl::integrate_positions(float h) {
-  const detail::IntegrateArgs args = integrate_args(h);
-  integrate_positions_fn* const kernel = GYRO_DISPATCH(integrate_positions);
-  detail::parallel_for(slot_of_body.size(), kBodyChunk, [&](std::size_t begin, std::size_t end) { kernel(args, begin, end); });
-}
+void World::Impl::integrate_velocities(float h) { integrate_split(GYRO_DISPATCH(integrate_velocities), h); }
+
+void World::Impl::integrate_positions(float h) { integrate_split(GYRO_DISPATCH(integrate_positions), h); }
 
 void World::Impl::write_back() {
   BodyStore& s = bodies;

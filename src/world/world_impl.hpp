@@ -59,6 +59,7 @@ struct World::Impl {
   detail::IntegrateArgs integrate_args(float h);
   void integrate_velocities(float h);
   void integrate_positions(float h);
+  void integrate_split(integrate_positions_fn* kernel, float h);
   void write_back();
   void update_sleep(float dt);
   void wake(uint32_t slot);
