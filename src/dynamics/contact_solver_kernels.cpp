@@ -80,10 +80,7 @@ template <class L> void warm_start(const ContactKernelArgs& a, std::size_t i) {
   store_pair(a, p, i);
 }
 
-// The pass's settings as template arguments: the point order and the bias become constants,
-// so the field offsets fold into the loads and the unused bias code disappears.
-template <class L, detail::BiasMode kMode, bool kReverse, bool kTrack>
-void solve(const ContactKernelArgs& a, std::size_t i) {
+template <class L> void solve(const ContactKernelArgs& a, std::size_t i) {
   const Lanes<L> c(a, i);
   Pair<L> p = load_pair(a, c, i);
   const V3<L> n = c.field3(cf::kNx);
@@ -91,36 +88,33 @@ void solve(const ContactKernelArgs& a, std::size_t i) {
 
   // Separation now, from the bodies' motion since the step began, to first order in the
   // rotation: s = s0 + dot(dpb - dpa, n) + dot(dthb, rb x n) - dot(dtha, ra x n).
-  constexpr bool biased = kMode != detail::BiasMode::none;
+  const bool biased = a.mode != detail::BiasMode::none;
   V3<L> dth_a{zero, zero, zero}, dth_b{zero, zero, zero};
   L ds = zero;
-  if constexpr (biased) {
+  if (biased) {
     const Rows8<L> ma = load_rows<L>(a.bodies, a.body_a, i, kRowMotion), mb = load_rows<L>(a.bodies, a.body_b, i, kRowMotion);
     const V3<L> dpa = col3(ma, 0), dpb = col3(mb, 0);
     dth_a = col3(ma, 3), dth_b = col3(mb, 3);
     ds = dot(dpb - dpa, n);
   }
-  L bias_rate = zero, mass_scale_soft(1.0f), impulse_scale_soft = zero;
-  if constexpr (kMode == detail::BiasMode::soft) {
-    const auto immovable = p.ma == zero || p.mb == zero;
-    bias_rate = select(immovable, L(a.soft_static.bias_rate), L(a.soft.bias_rate));
-    mass_scale_soft = select(immovable, L(a.soft_static.mass_scale), L(a.soft.mass_scale));
-    impulse_scale_soft = select(immovable, L(a.soft_static.impulse_scale), L(a.soft.impulse_scale));
-  }
+  const auto immovable = p.ma == zero || p.mb == zero;
+  const L bias_rate = select(immovable, L(a.soft_static.bias_rate), L(a.soft.bias_rate));
+  const L mass_scale_soft = select(immovable, L(a.soft_static.mass_scale), L(a.soft.mass_scale));
+  const L impulse_scale_soft = select(immovable, L(a.soft_static.impulse_scale), L(a.soft.impulse_scale));
 
   L total_normal = zero;
   for (uint32_t step = 0; step < 4; ++step) {
-    const uint32_t j = kReverse ? 3 - step : step;
+    const uint32_t j = a.reverse ? 3 - step : step;
     const uint32_t row = cf::point_field(j, 0);
     L s = c.field(row + cf::kSeparation);
-    if constexpr (biased) s = ((ds + dot(dth_b, c.field3(row + cf::kArmB))) - dot(dth_a, c.field3(row + cf::kArmA))) + s;
+    if (biased) s = ((ds + dot(dth_b, c.field3(row + cf::kArmB))) - dot(dth_a, c.field3(row + cf::kArmA))) + s;
     L bias = zero, mass_scale(1.0f), impulse_scale = zero;
-    if constexpr (kMode == detail::BiasMode::soft) {
+    if (a.mode == detail::BiasMode::soft) {
       // No slop here: the soft constraint settles at a penetration of its own (well under a
       // millimetre per contact in a stack), and a slop would add to every contact of a stack.
       bias = max(bias_rate * s, L(-a.max_push));
       mass_scale = mass_scale_soft, impulse_scale = impulse_scale_soft;
-    } else if constexpr (kMode == detail::BiasMode::baumgarte) {
+    } else if (a.mode == detail::BiasMode::baumgarte) {
       bias = max(L(a.baumgarte_rate) * min(s + L(a.slop), zero), L(-a.max_push));
     }
     const auto ahead = s > zero;
@@ -135,7 +129,7 @@ void solve(const ContactKernelArgs& a, std::size_t i) {
     const L total = max(old + impulse, zero);
     const L applied = total - old;
     c.set(fi, total);
-    if constexpr (kTrack) {
+    if (a.track_max_impulse) {
       const uint32_t fm = row + cf::kMaxNormalImpulse;
       c.set(fm, max(c.field(fm), applied));
     }
@@ -273,37 +267,17 @@ template <class L> void prepare(const detail::ContactPrepareArgs& a, std::size_t
   c.set(cf::kTwistMass, select(ok, one / select(ok, kt, one), zero));
 }
 
-template <detail::BiasMode kMode, bool kReverse, bool kTrack>
-GYRO_FLATTEN void solve_range(const ContactKernelArgs& a, std::size_t begin, std::size_t end) {
-  for_lanes(begin, end, [&](auto tag, std::size_t i) { solve<decltype(tag), kMode, kReverse, kTrack>(a, i); });
-}
-template <detail::BiasMode kMode>
-void solve_mode(const ContactKernelArgs& a, std::size_t begin, std::size_t end) {
-  if (a.reverse) {
-    if (a.track_max_impulse) solve_range<kMode, true, true>(a, begin, end);
-    else solve_range<kMode, true, false>(a, begin, end);
-  } else {
-    if (a.track_max_impulse) solve_range<kMode, false, true>(a, begin, end);
-    else solve_range<kMode, false, false>(a, begin, end);
-  }
-}
-
 }  // namespace
 
-GYRO_FLATTEN void contact_solve(const ContactKernelArgs& a, std::size_t begin, std::size_t end) {
-  switch (a.mode) {
-    case detail::BiasMode::soft: solve_mode<detail::BiasMode::soft>(a, begin, end); break;
-    case detail::BiasMode::baumgarte: solve_mode<detail::BiasMode::baumgarte>(a, begin, end); break;
-    default: solve_mode<detail::BiasMode::none>(a, begin, end); break;
-  }
-}
 GYRO_FLATTEN void contact_prepare(const detail::ContactPrepareArgs& a, std::size_t begin, std::size_t end) {
   for_lanes(begin, end, [&](auto tag, std::size_t i) { prepare<decltype(tag)>(a, i); });
 }
 GYRO_FLATTEN void contact_warm_start(const ContactKernelArgs& a, std::size_t begin, std::size_t end) {
   for_lanes(begin, end, [&](auto tag, std::size_t i) { warm_start<decltype(tag)>(a, i); });
 }
-
+GYRO_FLATTEN void contact_solve(const ContactKernelArgs& a, std::size_t begin, std::size_t end) {
+  for_lanes(begin, end, [&](auto tag, std::size_t i) { solve<decltype(tag)>(a, i); });
+}
 GYRO_FLATTEN void contact_restitution(const ContactKernelArgs& a, std::size_t begin, std::size_t end) {
   for_lanes(begin, end, [&](auto tag, std::size_t i) { restitution<decltype(tag)>(a, i); });
 }
