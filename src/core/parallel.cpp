@@ -65,6 +65,13 @@ ScopedThreadCount::ScopedThreadCount(uint32_t threads) : saved_(t_threads) {
 }
 ScopedThreadCount::~ScopedThreadCount() { t_threads = saved_; }
 
+std::size_t per_thread_chunk(std::size_t n, std::size_t min_chunk, std::size_t align) {
+  const std::size_t threads = thread_count();  // at least 1
+  const std::size_t per_thread = (n + threads - 1) / threads;
+  const std::size_t chunk = (per_thread + align - 1) / align * align;
+  return chunk > min_chunk ? chunk : min_chunk;
+}
+
 void parallel_for_chunks(std::size_t n, std::size_t chunk, ChunkFn fn, void* context) {
   if (n == 0) return;
   if (chunk == 0) chunk = n;

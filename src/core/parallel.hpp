@@ -61,6 +61,11 @@ template <class Shape, class F> void parallel_stages(std::size_t stages, std::si
   parallel_stages_erased(stages, min_chunks, shape_thunk, fn_thunk, &ctx);
 }
 
+/// The chunk for a loop whose cut cannot change its results (a solver colour, an integration):
+/// one chunk per thread, a multiple of `align`, and at least `min_chunk` elements, so a loop
+/// too small to pay for a fork runs as one chunk on the calling thread.
+std::size_t per_thread_chunk(std::size_t n, std::size_t min_chunk, std::size_t align);
+
 inline constexpr std::size_t kReduceBlock = 4096;
 
 inline std::size_t reduce_block_count(std::size_t n) { return (n + kReduceBlock - 1) / kReduceBlock; }

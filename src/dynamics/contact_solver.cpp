@@ -1,7 +1,6 @@
 #include "dynamics/contact_solver.hpp"
 
 #include "core/parallel.hpp"
-#include "gyro/runtime.hpp"
 
 #include <cmath>
 
@@ -9,17 +8,13 @@ namespace gyro::detail {
 namespace {
 
 constexpr uint32_t kNoRecord = 0xFFFFFFFFu;
-// A colour is cut into one chunk per thread, of at least kMinSolveChunk constraints (a
-// multiple of 16, so every chunk starts a SIMD batch); a pass with no colour of two chunks
-// runs on the calling thread. A chunk of 128 is ~5 us of solving on one core, against ~1 us
-// for an OpenMP barrier on a small VM. Within a colour the constraints share no dynamic
-// body, so how the colour is cut (and so the thread count) cannot change a result.
+// A colour is cut into one chunk per thread (per_thread_chunk), of at least kMinSolveChunk
+// constraints and a multiple of 16 (every chunk starts a SIMD batch); a pass with no colour
+// of two chunks runs on the calling thread. A chunk of 128 is ~5 us of solving on one core,
+// against ~1 us for an OpenMP barrier on a small VM. Within a colour the constraints share no
+// dynamic body, so how the colour is cut (and so the thread count) cannot change a result.
 constexpr std::size_t kMinSolveChunk = 128;
-std::size_t solve_chunk(std::size_t n, std::size_t threads) {
-  const std::size_t per_thread = (n + threads - 1) / threads;
-  const std::size_t chunk = (per_thread + kConstraintAlign - 1) / kConstraintAlign * kConstraintAlign;
-  return chunk > kMinSolveChunk ? chunk : kMinSolveChunk;
-}
+std::size_t solve_chunk(std::size_t n) { return per_thread_chunk(n, kMinSolveChunk, kConstraintAlign); }
 
 // Box2D v3's soft constraint coefficients for a spring of `hertz` with damping ratio `zeta`
 // stepped implicitly with sub-step h.
@@ -140,12 +135,11 @@ ContactKernelArgs ContactSolver::args_for(BiasMode mode) const {
 
 void ContactSolver::run(contact_pass_fn* pass, const ContactKernelArgs& args) const {
   // One parallel region for all colours of the pass, a barrier between colours.
-  const std::size_t threads = thread_count() > 0 ? thread_count() : 1;
   parallel_stages(
       plan_.colors(), 2,
       [&](std::size_t c, std::size_t* n, std::size_t* chunk) {
         *n = plan_.padded_end[c] - plan_.padded_first[c];
-        *chunk = solve_chunk(*n, threads);
+        *chunk = solve_chunk(*n);
       },
       [&](std::size_t c, std::size_t b, std::size_t e) { pass(args, plan_.padded_first[c] + b, plan_.padded_first[c] + e); });
 }
@@ -176,7 +170,7 @@ void ContactSolver::project_positions(BodyStore& s, const uint32_t* slot_of_body
   const float* const fields = fields_.data();
   for (uint32_t c = 0; c < plan_.colors(); ++c) {
     const std::size_t first = plan_.padded_first[c], n = plan_.padded_end[c] - first;
-    parallel_for(n, solve_chunk(n, thread_count()), [&](std::size_t b, std::size_t e) {
+    parallel_for(n, solve_chunk(n), [&](std::size_t b, std::size_t e) {
       for (std::size_t k = first + b; k < first + e; ++k) {
         if (record_of_slot_[k] == kNoRecord) continue;
         auto F = [&](uint32_t x) { return fields[field_index(x, k)]; };

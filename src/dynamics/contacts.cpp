@@ -261,7 +261,7 @@ void ContactSet::update(const BodyStore& s, const std::vector<CandidatePair>& pa
       const uint32_t a = pairs[i].a, b = pairs[i].b;
       ContactRecord* out = scratch_.data() + pair_first_[i];
       const uint32_t lane = boxes.lane[i - begin];
-      const float margin = lane != BoxPairBatch::kNone ? 0.0f : motion_margin(s, a, b, set);
+      const float margin = lane == BoxPairBatch::kNone ? motion_margin(s, a, b, set) : 0.0f;  // staged for boxes
       uint32_t n;
       if (lane != BoxPairBatch::kNone) {
         out->sub = 0;

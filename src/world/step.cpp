@@ -214,9 +214,8 @@ detail::IntegrateArgs World::Impl::integrate_args(float h) {
 // threads: the solver stage took ~15% longer with integration on one thread).
 void World::Impl::integrate_split(integrate_positions_fn* kernel, float h) {
   const detail::IntegrateArgs args = integrate_args(h);
-  const std::size_t m = slot_of_body.size(), threads = thread_count() > 0 ? thread_count() : 1;
-  const std::size_t per_thread = (m + threads - 1) / threads;
-  const std::size_t chunk = std::max<std::size_t>(kMinIntegrateChunk, (per_thread + 15) / 16 * 16);
+  const std::size_t m = slot_of_body.size();
+  const std::size_t chunk = detail::per_thread_chunk(m, kMinIntegrateChunk, 16);  // whole SIMD batches
   detail::parallel_stages(
       1, 2, [&](std::size_t, std::size_t* n, std::size_t* c) { *n = m, *c = chunk; },
       [&](std::size_t, std::size_t begin, std::size_t end) { kernel(args, begin, end); });
