@@ -6,7 +6,6 @@
 // worked on near the origin and keeps float precision.
 #pragma once
 
-
 #include "gyro/convex.hpp"
 
 #include <bit>

@@ -163,13 +163,11 @@ inline void s3d(const SimplexView& s, Sub& r) {
 
 // ---- typed core supports: the GJK loop is instantiated per pair of shape types ----
 
-inline float flip(float x, bool keep) { return keep ? x : -x; }
-
 // Support of A's core in A's frame (core: spheres and capsules without their radius).
 template <ConvexType T> inline vec3 core_support(const ConvexShape& s, const vec3& d) {
   if constexpr (T == ConvexType::sphere) return vec3{};
   else if constexpr (T == ConvexType::box)
-    return {flip(s.half_extents.x, d.x >= 0.0f), flip(s.half_extents.y, d.y >= 0.0f), flip(s.half_extents.z, d.z >= 0.0f)};
+    return {signed_by(s.half_extents.x, d.x), signed_by(s.half_extents.y, d.y), signed_by(s.half_extents.z, d.z)};
   else if constexpr (T == ConvexType::capsule) return vec3{0.0f, d.y >= 0.0f ? s.half_height : -s.half_height, 0.0f};
   else return local_support(s, d, true);
 }
