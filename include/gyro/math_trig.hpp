@@ -1,8 +1,9 @@
 // Deterministic trigonometry: the same bits on every CPU, SIMD level and compiler.
 //
-// std::sin and friends differ between libm versions and architectures (glibc's tan and
-// atan2 differ between x86-64 and aarch64), so gyro never calls them on state. These are
-// gyro's own polynomials (src/math/trig_lanes.hpp), the same template the SIMD kernels run.
+// The C library's sine, tangent and friends differ between libm versions and architectures
+// (glibc's tan and atan2 differ between x86-64 and aarch64), so gyro never calls them on
+// state. These are gyro's own polynomials (src/math/trig_lanes.hpp), the same template the
+// SIMD kernels run.
 //
 // Measured maximum error against long double (tests/math/trig_test.cpp: 2^21 arguments
 // per domain, half random, half on a uniform grid; the test fails above these bounds):
