@@ -2,7 +2,8 @@
 // queries: gyro's GJK intersection, GJK distance and GJK+EPA penetration (gyro/convex.hpp),
 // then the box-pair batches (convex_intersect_batch, convex_distance_batch,
 // convex_penetration_batch: GJK over SIMD lanes, per level, results bit-identical to the
-// scalar queries), and with --peers libccd (GJK and MPR intersection, GJK+EPA and MPR penetration) and
+// scalar queries; penetration also with separated_distance off, where separated pairs stop
+// at a separating axis as libccd's and Bullet's penetration calls do), and with --peers libccd (GJK and MPR intersection, GJK+EPA and MPR penetration) and
 // Bullet (btGjkEpaSolver2 Distance / Penetration, btGjkPairDetector with its GJK-EPA depth
 // solver; box margins 0) on the same pairs in the same run.
 //
@@ -99,9 +100,11 @@ void run_gyro(const BoxPairs& p, const std::vector<double>& sep, std::size_t n, 
     bool depth, dist;
   } methods[] = {{"gjk_intersect", convex_intersect, false, false},
                  {"gjk_distance", convex_distance, false, true},
-                 {"gjk_epa_penetration", convex_penetration, true, true}};
+                 {"gjk_epa_penetration", convex_penetration, true, true},
+                 {"gjk_epa_penetration_overlaps_only", convex_penetration, true, false}};
   for (const auto& m : methods) {
-    const ConvexQueryOptions opt;
+    ConvexQueryOptions opt;
+    opt.separated_distance = m.dist;  // without: separated pairs stop at a separating axis, as libccd's
     const double ms = median_ms(reps, [&] {
       for (std::size_t i = 0; i < n; ++i)
         out[i] = m.fn(box_shape(p.a, i), box_pose(p.a, i), box_shape(p.b, i), box_pose(p.b, i), opt);
@@ -145,15 +148,18 @@ void run_gyro_batch(const BoxPairs& p, const std::vector<double>& sep, std::size
   const struct {
     const char* name;
     void (*fn)(const ConvexBoxPairs&, std::size_t, ConvexResult*, const ConvexQueryOptions&);
-    bool depth;
-  } methods[] = {{"gjk_distance_batch", convex_distance_batch, false},
-                 {"gjk_epa_penetration_batch", convex_penetration_batch, true}};
+    bool depth, dist;
+  } methods[] = {{"gjk_distance_batch", convex_distance_batch, false, true},
+                 {"gjk_epa_penetration_batch", convex_penetration_batch, true, true},
+                 {"gjk_epa_penetration_overlaps_only_batch", convex_penetration_batch, true, false}};
   std::vector<ConvexResult> res(n), res_first;
   for (const auto& m : methods) {
     res_first.clear();
+    ConvexQueryOptions opt;
+    opt.separated_distance = m.dist;
     for (SimdLevel level : levels_to_run(o)) {
       set_simd_level(level);
-      const double ms = median_ms(o.reps, [&] { m.fn(pairs, n, res.data(), ConvexQueryOptions{}); });
+      const double ms = median_ms(o.reps, [&] { m.fn(pairs, n, res.data(), opt); });
       bool same = true;
       if (res_first.empty()) res_first = res;
       else
@@ -163,8 +169,9 @@ void run_gyro_batch(const BoxPairs& p, const std::vector<double>& sep, std::size
       for (std::size_t i = 0; i < n; ++i) limits += res[i].status == ConvexStatus::iteration_limit;
       const Score s = score(
           sep, n, [&](std::size_t i) { return overlapping(res[i].status); },
-          [&](std::size_t i) { return -double(res[i].distance); }, [&](std::size_t i) { return double(res[i].distance); });
-      emit("gyro", m.name, simd_level_name(level), ms, n, s, m.depth, true, o.reps, limits);
+          [&](std::size_t i) { return -double(res[i].distance); },
+          [&](std::size_t i) { return m.dist ? double(res[i].distance) : kNan; });
+      emit("gyro", m.name, simd_level_name(level), ms, n, s, m.depth, m.dist, o.reps, limits);
     }
   }
   set_simd_level(SimdLevel::automatic);

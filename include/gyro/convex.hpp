@@ -105,6 +105,13 @@ struct ConvexQueryOptions {
   float touch_tolerance = 1e-6f;  ///< |distance| <= this * size is "touching"
   uint32_t max_gjk_iterations = 64;
   uint32_t max_epa_iterations = 64;
+  /// convex_penetration only. true: a separated pair gets its exact distance and closest
+  /// points (GJK runs to convergence). false: a separated pair stops at the first separating
+  /// axis, as convex_intersect does (status separated; distance, normal and witnesses are
+  /// those at the exit: the distance is an upper bound). Overlapping pairs get the same bits
+  /// either way (no separating axis exists, so GJK's path to the enclosing simplex is the
+  /// same); false is for contact generation, which has no use for a gap's size.
+  bool separated_distance = true;
 };
 
 /// Boolean overlap by GJK: stops at the first separating axis or enclosing simplex. distance,
@@ -192,7 +199,8 @@ Status convex_hull_mass(const ConvexHull& hull, ConvexMass& out);
 /// convex_distance(box A_i, box B_i) for i in [0, count), written to out[i].
 void convex_distance_batch(const ConvexBoxPairs& pairs, std::size_t count, ConvexResult* out,
                            const ConvexQueryOptions& options = {});
-/// convex_penetration(box A_i, box B_i) for i in [0, count), written to out[i].
+/// convex_penetration(box A_i, box B_i) for i in [0, count), written to out[i] (with
+/// options.separated_distance false, the separated pairs stop early, as there).
 void convex_penetration_batch(const ConvexBoxPairs& pairs, std::size_t count, ConvexResult* out,
                               const ConvexQueryOptions& options = {});
 

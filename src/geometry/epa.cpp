@@ -26,6 +26,7 @@ namespace {
 
 constexpr int kMaxVerts = 128;
 constexpr int kMaxFaces = 256;
+constexpr float kInf = __builtin_huge_valf();
 
 struct Face {
   int v[3];
@@ -40,6 +41,11 @@ struct Face {
 struct Polytope {
   SupportPoint vert[kMaxVerts];
   Face face[kMaxFaces];
+  // The closest-face search key: d for a live face with a trusted normal and a finite
+  // distance, +inf for the others (dead, sliver, overflowed), so the search is a min over
+  // one dense array with no data-dependent branch (the face scan's compound test
+  // mispredicted about 23 times per EPA call).
+  float key[kMaxFaces];
   int nv = 0, nf = 0;
   int horizon_face[kMaxFaces], horizon_edge[kMaxFaces];
   int nh = 0;
@@ -55,7 +61,23 @@ struct Polytope {
     f.sliver = !(nn > 1e-12f * ee) || !(nn > 0.0f);
     f.n = f.sliver ? vec3{} : normalized(n);
     f.d = f.sliver ? 0.0f : dot(f.n, vert[a].w);
+    key[nf] = !f.sliver && f.d < kInf ? f.d : kInf;
     return nf++;
+  }
+
+  void kill(int g) { face[g].dead = true, key[g] = kInf; }
+
+  // The live, trusted face closest to the origin; ties go to the lowest index. -1 if none.
+  int closest() const {
+    float bk = kInf;
+    int best = -1;
+    for (int f = 0; f < nf; ++f) {
+      const float k = key[f];
+      const bool lt = k < bk;
+      bk = lt ? k : bk;
+      best = lt ? f : best;
+    }
+    return best;
   }
 
   bool visible(const Face& f, const vec3& w) const { return !f.sliver && dot(f.n, w) - f.d > 0.0f; }
@@ -68,7 +90,7 @@ struct Polytope {
       horizon_face[nh] = g, horizon_edge[nh] = j, ++nh;
       return;
     }
-    f.dead = true;
+    kill(g);
     walk(f.adj[(j + 1) % 3], f.adj_edge[(j + 1) % 3], w);
     walk(f.adj[(j + 2) % 3], f.adj_edge[(j + 2) % 3], w);
   }
@@ -101,6 +123,30 @@ bool link(Polytope& p, int from) {
 // what link() finds (link() would fail exactly where a partner is missing). Otherwise it
 // leaves the fan to link().
 bool link_fan(Polytope& p, int from) {
+  // The silhouette walk lists the horizon in loop order: each new face starts where the one
+  // before it ended. Where that holds and no vertex starts two faces, the partners are the
+  // neighbours in the list (what the general search below finds, without its bookkeeping).
+  const int nh = p.nf - from;
+  if (nh >= 3) {
+    uint64_t seen[2] = {0, 0};
+    bool loop = true;
+    for (int h = 0; h < nh && loop; ++h) {
+      const Face& fa = p.face[from + h];
+      const Face& next = p.face[from + (h + 1 == nh ? 0 : h + 1)];
+      const int s = fa.v[0];
+      const uint64_t bit = uint64_t(1) << (s & 63);
+      loop = next.v[0] == fa.v[1] && (seen[s >> 6] & bit) == 0;
+      seen[s >> 6] |= bit;
+    }
+    if (loop) {
+      for (int h = 0; h < nh; ++h) {
+        Face& fa = p.face[from + h];
+        fa.adj[1] = from + (h + 1 == nh ? 0 : h + 1), fa.adj_edge[1] = 2;
+        fa.adj[2] = from + (h == 0 ? nh - 1 : h - 1), fa.adj_edge[2] = 1;
+      }
+      return true;
+    }
+  }
   static thread_local int start_of[kMaxVerts], end_of[kMaxVerts], stamp_s[kMaxVerts], stamp_e[kMaxVerts];
   static thread_local int stamp = 0;
   if (++stamp == 0x7fffffff) {
@@ -242,17 +288,19 @@ EpaOutcome epa(const PairFrame& pair, const Simplex& start, uint32_t max_iterati
     p.vert[1] = p.vert[2], p.vert[2] = t;
   }
   p.add_face(0, 2, 1), p.add_face(0, 1, 3), p.add_face(0, 3, 2), p.add_face(1, 2, 3);
-  link(p, 0);
+  // Their adjacency, as link() finds it (every edge of a tetrahedron has one reverse).
+  static constexpr int kAdj[4][3] = {{2, 3, 1}, {0, 3, 2}, {1, 3, 0}, {0, 2, 1}};
+  static constexpr int kAdjEdge[4][3] = {{2, 0, 0}, {2, 2, 0}, {2, 1, 0}, {1, 1, 1}};
+  for (int f = 0; f < 4; ++f)
+    for (int i = 0; i < 3; ++i) p.face[f].adj[i] = kAdj[f][i], p.face[f].adj_edge[i] = kAdjEdge[f][i];
 
   // Curved supports approach their surface only quadratically: ask less of them.
   const float tol = (curved(*pair.a, pair.core) || curved(*pair.b, pair.core) ? 1e-4f : 1e-6f) * pair.scale;
   int best = -1;
   uint32_t it = 0;
   for (;; ++it) {
-    best = -1;
-    for (int f = 0; f < p.nf; ++f)
-      if (!p.face[f].dead && !p.face[f].sliver && (best < 0 || p.face[f].d < p.face[best].d)) best = f;
-    if (best < 0) break;  // cannot happen: a closed polytope has a proper face
+    best = p.closest();
+    if (best < 0) break;  // only where every face is a sliver or overflowed
     const Face& bf = p.face[best];
     if (it >= max_iterations) break;
     const SupportPoint s = pair.support(bf.n);
@@ -261,7 +309,10 @@ EpaOutcome epa(const PairFrame& pair, const Simplex& start, uint32_t max_iterati
       break;
     }
     bool repeat = false;
-    for (int i = 0; i < p.nv; ++i) repeat = repeat || (p.vert[i].w == s.w);
+    for (int i = 0; i < p.nv; ++i) {  // & and |, not && and ||: no branch per vertex
+      const vec3& u = p.vert[i].w;
+      repeat = repeat | ((u.x == s.w.x) & (u.y == s.w.y) & (u.z == s.w.z));
+    }
     if (repeat) {  // nothing new in this direction: the face is on the boundary
       out.converged = true;
       break;
@@ -271,7 +322,7 @@ EpaOutcome epa(const PairFrame& pair, const Simplex& start, uint32_t max_iterati
     p.vert[p.nv++] = s;
     p.nh = 0;
     Face& start_face = p.face[best];
-    start_face.dead = true;
+    p.kill(best);
     for (int i = 0; i < 3; ++i) p.walk(start_face.adj[i], start_face.adj_edge[i], s.w);
     if (p.nf + p.nh > kMaxFaces) break;
     const int first = p.nf;

@@ -479,6 +479,12 @@ ConvexResult conclude(const ConvexPose& pa, const PairFrame& f, const GjkOut& g,
   return finish(pa, st, out, e.normal, sa, sb, g.iterations + e.iterations);
 }
 
+// GJK's boolean exit (the first separating axis ends the loop): the intersect query, and the
+// penetration query when the caller has no use for a separated pair's distance.
+bool stops_early(Mode mode, const ConvexQueryOptions& opt) {
+  return mode == Mode::intersect || (mode == Mode::penetration && !opt.separated_distance);
+}
+
 ConvexResult query(const ConvexShape& a, const ConvexPose& pa, const ConvexShape& b, const ConvexPose& pb,
                    const ConvexQueryOptions& opt, Mode mode) {
   PairFrame f;
@@ -486,7 +492,7 @@ ConvexResult query(const ConvexShape& a, const ConvexPose& pa, const ConvexShape
   const float margins = margin_of(a) + margin_of(b);
   const float tol = opt.touch_tolerance * f.scale;
   GjkOut g;
-  gjk(f, mode == Mode::intersect, margins + tol, opt.max_gjk_iterations, g);
+  gjk(f, stops_early(mode, opt), margins + tol, opt.max_gjk_iterations, g);
   return conclude(pa, f, g, opt, mode);
 }
 
@@ -566,7 +572,8 @@ void box_batch(const ConvexBoxPairs& p, std::size_t count, const ConvexQueryOpti
   const auto work = std::make_unique<BoxGjkWork>();
   BoxGjkParams prm;
   prm.touch_tolerance = opt.touch_tolerance, prm.max_iterations = opt.max_gjk_iterations;
-  prm.boolean = mode == Mode::intersect, prm.penetration = mode == Mode::penetration;
+  prm.boolean = stops_early(mode, opt), prm.verdict_only = mode == Mode::intersect;
+  prm.penetration = mode == Mode::penetration;
   box_gjk_fn* const kernel = GYRO_DISPATCH(box_gjk);
   for (std::size_t base = 0; base < count; base += BoxGjkBlock::kMax) {
     const std::size_t end = count - base < BoxGjkBlock::kMax ? count : base + BoxGjkBlock::kMax;

@@ -32,7 +32,9 @@ struct BoxGjkBlock {
   uint32_t n[kMax], iterations[kMax], flags[kMax];
   static constexpr uint32_t kEnclosed = 1, kFull = 2, kEarly = 4, kLimit = 8;
   float nf[kMax];    // n as a float, for the lanes below
-  float apart[kMax]; // 1: GJK ended with the cores apart (not enclosing the origin), else 0
+  // How GJK ended: 0 enclosing the origin; else with the cores apart: 1 converged,
+  // 2 at the iteration limit, 3 at a separating axis (the boolean exit).
+  float apart[kMax];
   // Distance and penetration mode: the result of a pair whose cores ended apart (gjk.cpp's
   // conclude, its first branch, over lanes), valid where done[k] is 1 (else the caller
   // forms the result itself: the origin enclosed, or an output not finite).
@@ -52,7 +54,8 @@ struct BoxGjkWork {
 struct BoxGjkParams {
   float touch_tolerance = 1e-6f;
   uint32_t max_iterations = 64;
-  bool boolean = true;  // convex_intersect's early exit on a separating direction
+  bool boolean = true;  // GJK's early exit on a separating direction
+  bool verdict_only = true;  // convex_intersect: statuses only (else results are formed)
   bool penetration = false;  // results as convex_penetration's (else convex_distance's)
 };
 

@@ -212,14 +212,18 @@ template <class L> inline void round(std::size_t j, const BoxGjkParams& prm, Box
 }
 
 // Moves a finished slot's state to its pair's outcome.
-// In boolean mode only a pair enclosing the origin without a full tetrahedron (EPA's
+// For intersect verdicts only a pair enclosing the origin without a full tetrahedron (EPA's
 // touching test) needs its simplex.
-void finish_slot(const BoxGjkWork& w, std::size_t j, bool boolean, BoxGjkBlock& out) {
+void finish_slot(const BoxGjkWork& w, std::size_t j, bool verdict_only, BoxGjkBlock& out) {
   const std::size_t k = w.pair[j];
   const uint32_t n = uint32_t(w.n[j]), flags = w.state[j] >> 1;
   out.n[k] = n, out.iterations[k] = uint32_t(w.it[j]), out.flags[k] = flags;
-  out.vv[k] = w.vv[j], out.nf[k] = w.n[j], out.apart[k] = (flags & BoxGjkBlock::kEnclosed) != 0 ? 0.0f : ((flags & BoxGjkBlock::kLimit) != 0 ? 2.0f : 1.0f);
-  if (boolean && (flags & (BoxGjkBlock::kEnclosed | BoxGjkBlock::kFull)) != BoxGjkBlock::kEnclosed) return;
+  out.vv[k] = w.vv[j], out.nf[k] = w.n[j];
+  out.apart[k] = (flags & BoxGjkBlock::kEnclosed) != 0 ? 0.0f
+                 : (flags & BoxGjkBlock::kLimit) != 0  ? 2.0f
+                 : (flags & BoxGjkBlock::kEarly) != 0  ? 3.0f
+                                                       : 1.0f;
+  if (verdict_only && (flags & (BoxGjkBlock::kEnclosed | BoxGjkBlock::kFull)) != BoxGjkBlock::kEnclosed) return;
   for (uint32_t q = 0; q < n; ++q)
     for (int c = 0; c < 3; ++c) out.a[q][c][k] = w.a[q][c][j], out.b[q][c][k] = w.b[q][c][j];
   for (int q = 0; q < 4; ++q) out.lambda[q][k] = w.lambda[q][j];
@@ -237,15 +241,15 @@ template <class F> inline void for_each_column(BoxGjkWork& w, F&& f) {
   }
 }
 
-inline void finish_if_valid(const BoxGjkWork& w, std::size_t j, bool boolean, BoxGjkBlock& out) {
+inline void finish_if_valid(const BoxGjkWork& w, std::size_t j, bool verdict_only, BoxGjkBlock& out) {
   // A slot done before its first round without flags is an invalid pair: nothing to keep.
-  if (w.state[j] >> 1 != 0 || out.code[w.pair[j]] == BoxGjkBlock::kDone) finish_slot(w, j, boolean, out);
+  if (w.state[j] >> 1 != 0 || out.code[w.pair[j]] == BoxGjkBlock::kDone) finish_slot(w, j, verdict_only, out);
 }
 
 #if defined(GYRO_ARCH_AVX512)
 // Finishes the slots whose state says done and packs the others to the front, 16 slots at a
 // time with AVX-512's compress-store (the order of the kept slots is kept).
-std::size_t pack(BoxGjkWork& w, std::size_t count, bool boolean, BoxGjkBlock& out) {
+std::size_t pack(BoxGjkWork& w, std::size_t count, bool verdict_only, BoxGjkBlock& out) {
   std::size_t m = 0;
   for (std::size_t j = 0; j < count; j += 16) {
     const std::size_t len = count - j < 16 ? count - j : 16;
@@ -253,7 +257,7 @@ std::size_t pack(BoxGjkWork& w, std::size_t count, bool boolean, BoxGjkBlock& ou
     const __m512i st = _mm512_maskz_loadu_epi32(valid, w.state + j);
     const __mmask16 keep = _mm512_mask_cmpeq_epi32_mask(valid, st, _mm512_setzero_si512());
     for (unsigned bits = unsigned(valid & ~keep); bits != 0; bits &= bits - 1u)
-      finish_if_valid(w, j + std::size_t(__builtin_ctz(bits)), boolean, out);
+      finish_if_valid(w, j + std::size_t(__builtin_ctz(bits)), verdict_only, out);
     const std::size_t kept = std::size_t(__builtin_popcount(unsigned(keep)));
     if (m != j || kept != len) {
       const __m512i pair = _mm512_maskz_loadu_epi32(valid, w.pair + j);
@@ -274,11 +278,11 @@ void move_slot(BoxGjkWork& w, std::size_t j, std::size_t m) {
 }
 
 // Finishes the slots whose state says done and packs the others to the front.
-std::size_t pack(BoxGjkWork& w, std::size_t count, bool boolean, BoxGjkBlock& out) {
+std::size_t pack(BoxGjkWork& w, std::size_t count, bool verdict_only, BoxGjkBlock& out) {
   std::size_t m = 0;
   for (std::size_t j = 0; j < count; ++j) {
     if (w.state[j] != 0) {
-      finish_if_valid(w, j, boolean, out);
+      finish_if_valid(w, j, verdict_only, out);
       continue;
     }
     if (m != j) move_slot(w, j, m);
@@ -319,7 +323,9 @@ inline void conclude_apart(const ConvexBoxPairs& p, std::size_t i, std::size_t k
   const L tol = L(prm.touch_tolerance) * load<L>(out.scale + k);
   L st = select(dist > tol, L(0.0f), select(dist >= -tol, L(1.0f), L(2.0f)));
   const L limit_code = L(float(uint32_t(ConvexStatus::iteration_limit)));
-  st = select(load<L>(out.apart + k) > L(1.5f), limit_code, st);
+  const L apart = load<L>(out.apart + k);
+  st = select(apart == L(2.0f), limit_code, st);
+  st = select(apart == L(3.0f), L(float(uint32_t(ConvexStatus::separated))), st);
   const L d_out = prm.penetration ? dist : select(st == L(2.0f), zero, dist);
   // finish(): A's frame to the world, p * rotation (+ position).
   L m[3][3];
@@ -339,7 +345,7 @@ inline void conclude_apart(const ConvexBoxPairs& p, std::size_t i, std::size_t k
     store(out.r_point_a[c] + k, c == 0 ? pa.x : (c == 1 ? pa.y : pa.z));
     store(out.r_point_b[c] + k, c == 0 ? pb.x : (c == 1 ? pb.y : pb.z));
   }
-  store(out.done + k, select((load<L>(out.apart + k) > L(0.5f)) && (acc == zero), L(1.0f), zero));
+  store(out.done + k, select((apart > L(0.5f)) && (acc == zero), L(1.0f), zero));
 }
 
 }  // namespace
@@ -349,12 +355,12 @@ GYRO_FLATTEN void box_gjk(const ConvexBoxPairs& p, std::size_t begin, std::size_
   for_lanes(begin, end, [&](auto tag, std::size_t i) { start<decltype(tag)>(p, i, i - begin, prm, out, w); });
   const std::size_t count = end - begin;
   for (std::size_t k = 0; k < count; ++k) w.pair[k] = uint32_t(k);
-  std::size_t active = pack(w, count, prm.boolean, out);
+  std::size_t active = pack(w, count, prm.verdict_only, out);
   while (active > 0) {
     for_lanes(0, active, [&](auto tag, std::size_t j) { round<decltype(tag)>(j, prm, w); });
-    active = pack(w, active, prm.boolean, out);
+    active = pack(w, active, prm.verdict_only, out);
   }
-  if (!prm.boolean)
+  if (!prm.verdict_only)
     for_lanes(begin, end, [&](auto tag, std::size_t i) { conclude_apart<decltype(tag)>(p, i, i - begin, prm, out); });
 }
 

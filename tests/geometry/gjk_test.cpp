@@ -514,15 +514,18 @@ TEST(GjkBatch, BoxPairsMatchScalarIntersectAtEveryLevel) {
 }
 
 // convex_distance_batch and convex_penetration_batch: every output bit of the scalar query,
-// at every level, with the default options and with a GJK iteration limit that some pairs
-// reach (the lanes then form an iteration_limit result).
+// at every level, with the default options, with a GJK iteration limit that some pairs
+// reach (the lanes then form an iteration_limit result), and for penetration with
+// separated_distance off (separated pairs stop at a separating axis).
 TEST(GjkBatch, DistanceAndPenetrationMatchScalarAtEveryLevel) {
   const testing::BoxPairs p = batch_pairs();
   const std::size_t n = p.a.cx.size();
   const ConvexBoxPairs pairs = soa_view(p);
-  ConvexQueryOptions short_opt;
+  ConvexQueryOptions short_opt, early_opt, early_short_opt;
   short_opt.max_gjk_iterations = 2;
-  for (const ConvexQueryOptions& opt : {ConvexQueryOptions{}, short_opt}) {
+  early_opt.separated_distance = false;
+  early_short_opt.separated_distance = false, early_short_opt.max_gjk_iterations = 2;
+  for (const ConvexQueryOptions& opt : {ConvexQueryOptions{}, short_opt, early_opt, early_short_opt}) {
     for (bool penetration : {false, true}) {
       std::vector<ConvexResult> ref(n);
       std::size_t limits = 0, separated = 0, overlapping_pairs = 0;
@@ -546,11 +549,41 @@ TEST(GjkBatch, DistanceAndPenetrationMatchScalarAtEveryLevel) {
         std::size_t differ = 0;
         for (std::size_t i = 0; i < n; ++i) differ += std::memcmp(&out[i], &ref[i], sizeof(ConvexResult)) != 0;
         EXPECT_EQ(differ, 0u) << simd_level_name(level) << (penetration ? " penetration" : " distance")
-                              << " max_gjk_iterations " << opt.max_gjk_iterations;
+                              << " max_gjk_iterations " << opt.max_gjk_iterations << " separated_distance "
+                              << opt.separated_distance;
       }
       set_simd_level(SimdLevel::automatic);
     }
   }
+}
+
+// separated_distance off changes only what a separated pair reports: every overlapping
+// pair's result keeps its bits (GJK takes the same path to the enclosing simplex), every
+// separated pair stays separated with a distance no smaller than the converged one (|v| only
+// decreases along the way), and the early stop saves iterations.
+TEST(GjkPenetration, SeparatedDistanceOffKeepsOverlapsBitForBit) {
+  const testing::BoxPairs p = testing::n1_pairs(20000);
+  ConvexQueryOptions early;
+  early.separated_distance = false;
+  std::size_t overlaps = 0, separated = 0, it_full = 0, it_early = 0;
+  for (std::size_t i = 0; i < p.a.cx.size(); ++i) {
+    const ConvexShape a = raw_box(p.a, i), b = raw_box(p.b, i);
+    const ConvexResult full = convex_penetration(a, pose_of(p.a, i), b, pose_of(p.b, i));
+    const ConvexResult fast = convex_penetration(a, pose_of(p.a, i), b, pose_of(p.b, i), early);
+    ASSERT_NE(full.status, ConvexStatus::iteration_limit) << i;
+    if (overlapping(full.status)) {
+      ++overlaps;
+      EXPECT_EQ(std::memcmp(&full, &fast, sizeof(ConvexResult)), 0) << i;
+    } else {
+      ++separated;
+      EXPECT_EQ(fast.status, ConvexStatus::separated) << i;
+      EXPECT_GE(fast.distance, full.distance) << i;
+      it_full += full.iterations, it_early += fast.iterations;
+    }
+  }
+  EXPECT_GT(overlaps, 1000u);
+  EXPECT_GT(separated, 10000u);
+  EXPECT_LT(double(it_early), 0.8 * double(it_full));
 }
 
 TEST(GjkBatch, EmptyBatchWritesNothing) {
