@@ -70,8 +70,11 @@ inline Quad leaf_t(const LeafRay& r, const BvhLeaf4& leaf, Quad tmin, Quad tmax)
   return select(k.inside && (t >= tmin) && (t <= tmax), t + Quad(0.0f), Quad(kInf));
 }
 
-// Asks for every line of a node or leaf block: a visit needs all of them.
-inline void prefetch(const Bvh8& bvh, uint32_t code) {
+// Asks for every line of a node or leaf block: a visit needs all of them. Only where rays
+// take turns: rays from one origin find their nodes in the cache, and there the prefetches
+// are only instructions.
+template <bool Turns> inline void prefetch(const Bvh8& bvh, uint32_t code) {
+  if constexpr (!Turns) return;
   if (code & kLeafBit) {
     const char* p = reinterpret_cast<const char*>(&bvh.leaves[code & ~kLeafBit]);
     for (std::size_t line = 0; line < sizeof(BvhLeaf4); line += 64) __builtin_prefetch(p + line);
@@ -97,6 +100,7 @@ struct Walk {
   Entry stack[detail::kBvhStackSize];
 };
 
+template <bool Turns>
 inline void start(const Bvh8& bvh, Walk& w, std::size_t ray, const float o[3], const float d[3], float tmin, float tmax) {
   const float inv[3] = {1.0f / d[0], 1.0f / d[1], 1.0f / d[2]};
   for (int a = 0; a < 3; ++a) {
@@ -110,11 +114,11 @@ inline void start(const Bvh8& bvh, Walk& w, std::size_t ray, const float o[3], c
   w.ray = ray;
   w.next = {0, tmin};
   w.sp = 0;
-  prefetch(bvh, 0);
+  prefetch<Turns>(bvh, 0);
 }
 
 // Visits w.next and picks the one after it; false when the walk is over.
-template <bool AnyHit> inline bool step(const Bvh8& bvh, Walk& w) {
+template <bool AnyHit, bool Turns> inline bool step(const Bvh8& bvh, Walk& w) {
   const Entry e = w.next;
   if (e.code & kLeafBit) {
     const BvhLeaf4& leaf = bvh.leaves[e.code & ~kLeafBit];
@@ -142,7 +146,16 @@ template <bool AnyHit> inline bool step(const Bvh8& bvh, Walk& w) {
       store(nears, tn);
       const int k0 = __builtin_ctz(mask);
       w.next = {node.child[k0], nears[k0]};
-      if (mask & (mask - 1)) {
+      const unsigned rest = mask & (mask - 1);
+      if (rest != 0 && (rest & (rest - 1)) == 0) {
+        // Two (the commonest several): the nearer next, the other pushed; a tie keeps the
+        // slot order, as the sort below would.
+        const int k1 = __builtin_ctz(rest);
+        const Entry e0{node.child[k0], nears[k0]}, e1{node.child[k1], nears[k1]};
+        const bool swap = nears[k1] < nears[k0];
+        w.stack[w.sp++] = swap ? e0 : e1;
+        w.next = swap ? e1 : e0;
+      } else if (rest != 0) {
         // Several: the nearest next, the others pushed farthest first (ties keep the slot
         // order, so the order is a function of the values only).
         Entry hit[8];
@@ -157,7 +170,7 @@ template <bool AnyHit> inline bool step(const Bvh8& bvh, Walk& w) {
         w.next = hit[0];
       }
       if (w.next.near <= w.limit) {
-        prefetch(bvh, w.next.code);
+        prefetch<Turns>(bvh, w.next.code);
         return true;
       }
     }
@@ -166,7 +179,7 @@ template <bool AnyHit> inline bool step(const Bvh8& bvh, Walk& w) {
     const Entry p = w.stack[--w.sp];
     if (p.near > w.limit) continue;
     w.next = p;
-    prefetch(bvh, p.code);
+    prefetch<Turns>(bvh, p.code);
     return true;
   }
   return false;
@@ -194,7 +207,7 @@ inline bool one_origin(const BvhRaycastArgs& a, std::size_t begin, std::size_t e
   return true;
 }
 
-template <bool AnyHit> void run(const BvhRaycastArgs& a, std::size_t begin, std::size_t end) {
+template <bool AnyHit, bool Turns> void run(const BvhRaycastArgs& a, std::size_t begin, std::size_t end) {
   Walk walks[kInFlight];
   int live[kInFlight], n = 0;
   std::size_t next = begin;
@@ -207,7 +220,7 @@ template <bool AnyHit> void run(const BvhRaycastArgs& a, std::size_t begin, std:
       const float tmin = a.tmin ? a.tmin[i] : 0.0f;
       const float tmax = a.tmax ? a.tmax[i] : kInf;
       if (valid_ray(o, d, tmin, tmax)) {
-        start(*a.bvh, w, i, o, d, tmin, tmax);
+        start<Turns>(*a.bvh, w, i, o, d, tmin, tmax);
         ++next;
         return true;
       }
@@ -216,13 +229,13 @@ template <bool AnyHit> void run(const BvhRaycastArgs& a, std::size_t begin, std:
     }
     return false;
   };
-  const int in_flight = one_origin(a, begin, end) ? 1 : kInFlight;
+  const int in_flight = Turns ? kInFlight : 1;
   for (int k = 0; k < in_flight; ++k)
     if (refill(walks[k])) live[n++] = k;
   while (n > 0) {
     for (int j = 0; j < n;) {
       Walk& w = walks[live[j]];
-      if (step<AnyHit>(*a.bvh, w)) {
+      if (step<AnyHit, Turns>(*a.bvh, w)) {
         ++j;
         continue;
       }
@@ -237,7 +250,8 @@ template <bool AnyHit> void run(const BvhRaycastArgs& a, std::size_t begin, std:
 }  // namespace
 
 GYRO_FLATTEN void bvh_raycast(const BvhRaycastArgs& a, std::size_t begin, std::size_t end) {
-  a.any_hit ? run<true>(a, begin, end) : run<false>(a, begin, end);
+  if (one_origin(a, begin, end)) a.any_hit ? run<true, false>(a, begin, end) : run<false, false>(a, begin, end);
+  else a.any_hit ? run<true, true>(a, begin, end) : run<false, true>(a, begin, end);
 }
 
 }  // namespace gyro::GYRO_ARCH_NS
