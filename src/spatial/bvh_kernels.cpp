@@ -229,8 +229,19 @@ template <bool AnyHit, bool Turns> void run(const BvhRaycastArgs& a, std::size_t
     }
     return false;
   };
-  const int in_flight = Turns ? kInFlight : 1;
-  for (int k = 0; k < in_flight; ++k)
+  const auto finish = [&](const Walk& w) {
+    a.t_out[w.ray] = w.best_t;
+    a.index_out[w.ray] = w.best_id;
+  };
+  if constexpr (!Turns) {  // one ray at a time: no bookkeeping of turns
+    while (refill(walks[0])) {
+      while (step<AnyHit, Turns>(*a.bvh, walks[0])) {
+      }
+      finish(walks[0]);
+    }
+    return;
+  }
+  for (int k = 0; k < kInFlight; ++k)
     if (refill(walks[k])) live[n++] = k;
   while (n > 0) {
     for (int j = 0; j < n;) {
@@ -239,8 +250,7 @@ template <bool AnyHit, bool Turns> void run(const BvhRaycastArgs& a, std::size_t
         ++j;
         continue;
       }
-      a.t_out[w.ray] = w.best_t;
-      a.index_out[w.ray] = w.best_id;
+      finish(w);
       if (refill(w)) ++j;
       else live[j] = live[--n];
     }

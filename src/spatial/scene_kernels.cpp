@@ -222,8 +222,20 @@ template <bool AnyHit, bool Turns> void run(const SceneRaycastArgs& a, std::size
     }
     return false;
   };
-  const int in_flight = Turns ? kInFlight : 1;
-  for (int k = 0; k < in_flight; ++k)
+  const auto finish = [&](const Walk& w) {
+    a.best_t[w.ray] = w.best_t;
+    a.best_key[w.ray] = w.best_key;
+    if (w.best_item != kNone) a.best_item[w.ray] = w.best_item;
+  };
+  if constexpr (!Turns) {  // one ray at a time: no bookkeeping of turns
+    while (refill(walks[0])) {
+      while (step<AnyHit, Turns>(a, walks[0])) {
+      }
+      finish(walks[0]);
+    }
+    return;
+  }
+  for (int k = 0; k < kInFlight; ++k)
     if (refill(walks[k])) live[n++] = k;
   while (n > 0) {
     for (int j = 0; j < n;) {
@@ -232,9 +244,7 @@ template <bool AnyHit, bool Turns> void run(const SceneRaycastArgs& a, std::size
         ++j;
         continue;
       }
-      a.best_t[w.ray] = w.best_t;
-      a.best_key[w.ray] = w.best_key;
-      if (w.best_item != kNone) a.best_item[w.ray] = w.best_item;
+      finish(w);
       if (refill(w)) ++j;
       else live[j] = live[--n];
     }
