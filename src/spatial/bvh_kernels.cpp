@@ -207,6 +207,140 @@ inline bool one_origin(const BvhRaycastArgs& a, std::size_t begin, std::size_t e
   return true;
 }
 
+// ---- packets: rays from one origin walk the tree together ----
+//
+// Eight rays from one origin (a lidar column, a camera row) enter nearly the same nodes, so
+// a packet walks the tree once for all of them: a node's child boxes are tested against the
+// eight rays in one 8-wide lane per child (lane r is ray r, with the single walk's
+// expressions, so each (ray, box) pair gives the single walk's bits), each child is entered
+// by the rays whose test passed, and the traversal's bookkeeping (ordering, stack, pops) is
+// paid once per packet instead of once per ray. A leaf's triangles are tested ray by ray
+// with the single walk's leaf test. Which nodes a ray visits, and in what order, changes
+// only which subtrees its best t lets it skip (see the exactness notes above), so each ray
+// gets the single walk's answer. Closest hit only: an any-hit answer depends on the order
+// of the visits, and a ray's answer must not depend on the rays beside it. The rays of a
+// packet must agree on the sign of each direction component (they share near and far
+// planes); a group that does not walks ray by ray.
+
+constexpr int kPacket = 8;
+
+struct PacketEntry {
+  float near[kPacket];  // per ray: where it enters the box (valid where mask says)
+  uint32_t code;
+  unsigned mask;        // the rays that entered it
+};
+
+struct Packet {
+  Oct o[3], inv[3], tmin;
+  int near_row[3], far_row[3];
+  float limit[kPacket], best_t[kPacket];
+  uint32_t best_id[kPacket];
+  LeafRay leaf[kPacket];
+  Quad tmin4[kPacket], tmax4[kPacket];
+  PacketEntry stack[detail::kBvhStackSize];
+};
+
+// Sets up the packet of rays idx[0 .. n) (valid rays); false when their direction signs
+// differ (then they walk one by one).
+inline bool start_packet(const BvhRaycastArgs& a, const std::size_t* idx, int n, Packet& P) {
+  alignas(32) float lanes[3][2][kPacket];  // [axis][o, inv][ray]
+  alignas(32) float tmin[kPacket];
+  unsigned neg_all = 0, neg_any = 0;
+  for (int r = 0; r < kPacket; ++r) {
+    const std::size_t i = idx[r < n ? r : 0];  // the lanes past n repeat ray 0 (never entered: mask)
+    const float o[3] = {a.ox[i], a.oy[i], a.oz[i]}, d[3] = {a.dx[i], a.dy[i], a.dz[i]};
+    unsigned neg = 0;
+    for (int k = 0; k < 3; ++k) {
+      const float inv = 1.0f / d[k];
+      neg |= (std::bit_cast<uint32_t>(inv) >> 31) << k;
+      lanes[k][0][r] = o[k], lanes[k][1][r] = inv;
+    }
+    neg_all = r == 0 ? neg : neg_all & neg, neg_any |= neg;
+    const float t0 = a.tmin ? a.tmin[i] : 0.0f, t1 = a.tmax ? a.tmax[i] : kInf;
+    tmin[r] = t0;
+    P.limit[r] = t1, P.best_t[r] = kInf, P.best_id[r] = kNoTriangle;
+    P.leaf[r] = leaf_ray(o, d);
+    P.tmin4[r] = Quad(t0), P.tmax4[r] = Quad(t1);
+  }
+  if (neg_all != neg_any) return false;
+  for (int k = 0; k < 3; ++k) {
+    const int neg = int(neg_all >> k & 1u);
+    P.near_row[k] = 2 * k + neg, P.far_row[k] = 2 * k + 1 - neg;
+    P.o[k] = load<Oct>(lanes[k][0]), P.inv[k] = load<Oct>(lanes[k][1]);
+  }
+  P.tmin = load<Oct>(tmin);
+  return true;
+}
+
+// The packet's walk from the root; the rays' answers in P.best_t, P.best_id.
+inline void walk_packet(const Bvh8& bvh, Packet& P, unsigned rays) {
+  int sp = 0;
+  uint32_t code = 0;
+  unsigned mask = rays;
+  for (;;) {
+    if (code & kLeafBit) {
+      const BvhLeaf4& leaf = bvh.leaves[code & ~kLeafBit];
+      for (unsigned m = mask; m != 0; m &= m - 1) {
+        const int r = __builtin_ctz(m);
+        const Quad t = leaf_t(P.leaf[r], leaf, P.tmin4[r], P.tmax4[r]);
+        if (!any(t < Quad(kInf))) continue;
+        float ts[4];
+        store(ts, t);
+        for (int k = 0; k < 4; ++k)
+          if (ts[k] < P.best_t[r] || (ts[k] == P.best_t[r] && leaf.triangle[k] < P.best_id[r]))
+            P.best_t[r] = ts[k], P.best_id[r] = leaf.triangle[k];
+        P.limit[r] = P.best_t[r] + P.best_t[r] * kBestSlack;
+      }
+    } else {
+      const BvhNode8& node = bvh.nodes[code];
+      const Oct limit = load<Oct>(P.limit);
+      alignas(32) float nears[8][kPacket];
+      unsigned entered[8];
+      int order[8], n = 0;
+      for (int c = 0; c < 8; ++c) {
+        if (node.child[c] == detail::kEmptyChild) continue;
+        const auto slab = [&](int row, int axis) { return (Oct(node.bounds[row][c]) - P.o[axis]) * P.inv[axis]; };
+        const int* nr = P.near_row;
+        const int* fr = P.far_row;
+        const Oct tn = max(slab(nr[0], 0), max(slab(nr[1], 1), max(slab(nr[2], 2), P.tmin)));
+        const Oct tf = min(slab(fr[0], 0), min(slab(fr[1], 1), min(slab(fr[2], 2), limit)));
+        const unsigned in = lane_bits(tn <= tf + abs(tf) * Oct(kSlabSlack)) & mask;
+        if (in == 0) continue;
+        store(nears[c], tn);
+        entered[c] = in;
+        // Nearest first by the entry of the packet's first ray still in it; ties keep the slot order.
+        const float key = nears[c][__builtin_ctz(in)];
+        int j = n++;
+        while (j > 0 && nears[order[j - 1]][__builtin_ctz(entered[order[j - 1]])] > key) order[j] = order[j - 1], --j;
+        order[j] = c;
+      }
+      for (int j = n - 1; j > 0; --j) {
+        PacketEntry& e = P.stack[sp++];
+        const int c = order[j];
+        for (int r = 0; r < kPacket; ++r) e.near[r] = nears[c][r];
+        e.code = node.child[c], e.mask = entered[c];
+      }
+      if (n > 0) {
+        const int c = order[0];
+        const unsigned live = entered[c] & lane_bits(load<Oct>(nears[c]) <= limit);
+        if (live != 0) {
+          code = node.child[c], mask = live;
+          continue;
+        }
+      }
+    }
+    // The next entry that some of its rays still enter within their best t.
+    for (;;) {
+      if (sp == 0) return;
+      const PacketEntry& e = P.stack[--sp];
+      const unsigned live = e.mask & lane_bits(load<Oct>(e.near) <= load<Oct>(P.limit));
+      if (live == 0) continue;
+      code = e.code, mask = live;
+      break;
+    }
+  }
+}
+
 template <bool AnyHit, bool Turns> void run(const BvhRaycastArgs& a, std::size_t begin, std::size_t end) {
   Walk walks[kInFlight];
   int live[kInFlight], n = 0;
@@ -257,10 +391,48 @@ template <bool AnyHit, bool Turns> void run(const BvhRaycastArgs& a, std::size_t
   }
 }
 
+// Rays [begin, end), all from one origin, closest hit: groups of eight valid rays in ray
+// order walk as packets (a group whose direction signs differ walks ray by ray).
+void run_packets(const BvhRaycastArgs& a, std::size_t begin, std::size_t end) {
+  Packet P;
+  Walk w;
+  std::size_t idx[kPacket];
+  std::size_t next = begin;
+  for (;;) {
+    int n = 0;
+    for (; n < kPacket && next < end; ++next) {
+      const std::size_t i = next;
+      const float o[3] = {a.ox[i], a.oy[i], a.oz[i]}, d[3] = {a.dx[i], a.dy[i], a.dz[i]};
+      if (valid_ray(o, d, a.tmin ? a.tmin[i] : 0.0f, a.tmax ? a.tmax[i] : kInf)) {
+        idx[n++] = i;
+        continue;
+      }
+      a.t_out[i] = kInf;
+      a.index_out[i] = detail::kInvalidRay;
+    }
+    if (n == 0) return;
+    if (start_packet(a, idx, n, P)) {
+      walk_packet(*a.bvh, P, (1u << n) - 1u);
+      for (int r = 0; r < n; ++r) a.t_out[idx[r]] = P.best_t[r], a.index_out[idx[r]] = P.best_id[r];
+      continue;
+    }
+    for (int r = 0; r < n; ++r) {
+      const std::size_t i = idx[r];
+      const float o[3] = {a.ox[i], a.oy[i], a.oz[i]}, d[3] = {a.dx[i], a.dy[i], a.dz[i]};
+      start<false>(*a.bvh, w, i, o, d, a.tmin ? a.tmin[i] : 0.0f, a.tmax ? a.tmax[i] : kInf);
+      while (step<false, false>(*a.bvh, w)) {
+      }
+      a.t_out[i] = w.best_t;
+      a.index_out[i] = w.best_id;
+    }
+  }
+}
+
 }  // namespace
 
 GYRO_FLATTEN void bvh_raycast(const BvhRaycastArgs& a, std::size_t begin, std::size_t end) {
-  if (one_origin(a, begin, end)) a.any_hit ? run<true, false>(a, begin, end) : run<false, false>(a, begin, end);
+  if (one_origin(a, begin, end) && !a.any_hit) run_packets(a, begin, end);
+  else if (one_origin(a, begin, end)) run<true, false>(a, begin, end);
   else a.any_hit ? run<true, true>(a, begin, end) : run<false, true>(a, begin, end);
 }
 

@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstring>
@@ -69,8 +70,12 @@ MeshData soup_mesh(std::size_t n, SplitMix64& rng) {
 }
 
 // Rays of every kind: random, axis-parallel (zero direction components), aimed at vertices
-// and edge midpoints, starting on the surface, and with finite [tmin, tmax] windows.
-RaySet rays_for(const MeshData& m, std::size_t n, SplitMix64& rng, std::vector<float>& tmin, std::vector<float>& tmax) {
+// and edge midpoints, starting on the surface, and with finite [tmin, tmax] windows. With
+// `origin`, every ray starts there (a lidar's or a camera's rays, which the batch walks in
+// packets), sorted by the signs of their directions so that most groups of eight share
+// them (the groups that do not walk ray by ray: both paths are tested).
+RaySet rays_for(const MeshData& m, std::size_t n, SplitMix64& rng, std::vector<float>& tmin, std::vector<float>& tmax,
+                const vec3* origin = nullptr) {
   RaySet r;
   const AABB box = aabb_from_min_max({*std::min_element(m.x.begin(), m.x.end()), *std::min_element(m.y.begin(), m.y.end()),
                                       *std::min_element(m.z.begin(), m.z.end())},
@@ -92,23 +97,39 @@ RaySet rays_for(const MeshData& m, std::size_t n, SplitMix64& rng, std::vector<f
       d = vec3{0.0f, 0.0f, 0.0f};
       (axis == 0 ? d.x : axis == 1 ? d.y : d.z) = rng.u() < 0.5 ? -1.0f : 1.0f;
     }
-    vec3 origin = o;
-    if (kind == 4) origin = m.vertex(std::size_t(rng.next() % m.vertex_count()));  // on the surface
-    r.push(origin.x, origin.y, origin.z, d.x, d.y, d.z);
+    vec3 start = o;
+    if (kind == 4) start = m.vertex(std::size_t(rng.next() % m.vertex_count()));  // on the surface
+    if (origin) {
+      if (kind == 1 || kind == 2) d = d + (o - *origin);  // still aimed at the vertex or edge
+      start = *origin;
+    }
+    r.push(start.x, start.y, start.z, d.x, d.y, d.z);
     const bool window = i % 5 == 0;
     tmin.push_back(window ? float(0.3 * rng.u()) : 0.0f);
     tmax.push_back(window ? float(0.5 + rng.u()) : INFINITY);
   }
+  if (origin) {
+    const auto signs = [&](std::size_t i) { return (r.dx[i] < 0) | (r.dy[i] < 0) << 1 | (r.dz[i] < 0) << 2; };
+    std::vector<std::size_t> order(n);
+    for (std::size_t i = 0; i < n; ++i) order[i] = i;
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) { return signs(x) < signs(y); });
+    RaySet sorted;
+    std::vector<float> t0, t1;
+    for (std::size_t i : order)
+      sorted.push(r.ox[i], r.oy[i], r.oz[i], r.dx[i], r.dy[i], r.dz[i]), t0.push_back(tmin[i]), t1.push_back(tmax[i]);
+    r = sorted, tmin = t0, tmax = t1;
+  }
   return r;
 }
 
-void expect_matches_brute_force(const MeshData& m, std::size_t nrays, uint64_t seed, double min_hit_fraction = 0.1) {
+void expect_matches_brute_force(const MeshData& m, std::size_t nrays, uint64_t seed, double min_hit_fraction = 0.1,
+                                const vec3* origin = nullptr) {
   SplitMix64 rng(seed);
   TriangleMesh mesh;
   ASSERT_EQ(TriangleMesh::create(m, mesh), Status::ok);
   const Soup soup(m);
   std::vector<float> tmin, tmax;
-  RaySet rays = rays_for(m, nrays, rng, tmin, tmax);
+  RaySet rays = rays_for(m, nrays, rng, tmin, tmax, origin);
   RaysView view = rays.view();
   view.tmin = tmin.data(), view.tmax = tmax.data();
   HitSet want(nrays);
@@ -165,6 +186,14 @@ TEST(TriangleMesh, GridRaycastsEqualBruteForceAtEveryLevel) {
 TEST(TriangleMesh, SoupRaycastsEqualBruteForceAtEveryLevel) {
   SplitMix64 rng(21);
   expect_matches_brute_force(soup_mesh(3000, rng), 6000, 22);
+}
+
+// Rays from one origin (above the grid, inside the soup) walk in packets of eight.
+TEST(TriangleMesh, OneOriginRaysEqualBruteForceAtEveryLevel) {
+  SplitMix64 rng(13);
+  const vec3 above{6.0f, 1.5f, 8.0f}, inside{5.0f, 5.0f, 5.0f};
+  expect_matches_brute_force(grid_mesh(40, 0.25f, {1.0f, -2.0f, 3.0f}, rng), 6000, 14, 0.1, &above);
+  expect_matches_brute_force(soup_mesh(3000, rng), 6000, 15, 0.1, &inside);
 }
 
 TEST(TriangleMesh, TinyAndHugeAndFarScalesEqualBruteForce) {
