@@ -231,7 +231,8 @@ struct PacketEntry {
 };
 
 struct Packet {
-  Oct o[3], inv[3], tmin;
+  float o[3];  // the rays' common origin
+  Oct inv[3], tmin;
   int near_row[3], far_row[3];
   float limit[kPacket], best_t[kPacket];
   uint32_t best_id[kPacket];
@@ -240,15 +241,17 @@ struct Packet {
   PacketEntry stack[detail::kBvhStackSize];
 };
 
-// Sets up the packet of rays idx[0 .. n) (valid rays); false when their direction signs
-// differ (then they walk one by one).
+// Sets up the packet of rays idx[0 .. n) (valid rays); false when their direction signs or
+// origins differ (then they walk one by one).
 inline bool start_packet(const BvhRaycastArgs& a, const std::size_t* idx, int n, Packet& P) {
   alignas(32) float lanes[3][2][kPacket];  // [axis][o, inv][ray]
   alignas(32) float tmin[kPacket];
   unsigned neg_all = 0, neg_any = 0;
+  bool same_origin = true;
   for (int r = 0; r < kPacket; ++r) {
     const std::size_t i = idx[r < n ? r : 0];  // the lanes past n repeat ray 0 (never entered: mask)
     const float o[3] = {a.ox[i], a.oy[i], a.oz[i]}, d[3] = {a.dx[i], a.dy[i], a.dz[i]};
+    same_origin = same_origin && o[0] == a.ox[idx[0]] && o[1] == a.oy[idx[0]] && o[2] == a.oz[idx[0]];
     unsigned neg = 0;
     for (int k = 0; k < 3; ++k) {
       const float inv = 1.0f / d[k];
@@ -262,11 +265,11 @@ inline bool start_packet(const BvhRaycastArgs& a, const std::size_t* idx, int n,
     P.leaf[r] = leaf_ray(o, d);
     P.tmin4[r] = Quad(t0), P.tmax4[r] = Quad(t1);
   }
-  if (neg_all != neg_any) return false;
+  if (neg_all != neg_any || !same_origin) return false;
   for (int k = 0; k < 3; ++k) {
     const int neg = int(neg_all >> k & 1u);
     P.near_row[k] = 2 * k + neg, P.far_row[k] = 2 * k + 1 - neg;
-    P.o[k] = load<Oct>(lanes[k][0]), P.inv[k] = load<Oct>(lanes[k][1]);
+    P.o[k] = lanes[k][0][0], P.inv[k] = load<Oct>(lanes[k][1]);
   }
   P.tmin = load<Oct>(tmin);
   return true;
@@ -299,7 +302,9 @@ inline void walk_packet(const Bvh8& bvh, Packet& P, unsigned rays) {
       int order[8], n = 0;
       for (int c = 0; c < 8; ++c) {
         if (node.child[c] == detail::kEmptyChild) continue;
-        const auto slab = [&](int row, int axis) { return (Oct(node.bounds[row][c]) - P.o[axis]) * P.inv[axis]; };
+        // bound - o is the same for every ray of the packet: once, in a float (the lane
+        // expression's bits), then times each ray's 1/d.
+        const auto slab = [&](int row, int axis) { return Oct(node.bounds[row][c] - P.o[axis]) * P.inv[axis]; };
         const int* nr = P.near_row;
         const int* fr = P.far_row;
         const Oct tn = max(slab(nr[0], 0), max(slab(nr[1], 1), max(slab(nr[2], 2), P.tmin)));

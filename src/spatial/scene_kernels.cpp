@@ -116,41 +116,47 @@ template <bool Turns> inline bool next_entry(const SceneRaycastArgs& a, Walk& w)
   return false;
 }
 
+// A leaf's models for one ray: its best and limit updated. True when an any-hit walk has
+// found its hit (the walk is over).
+template <bool AnyHit> inline bool visit_leaf(const SceneRaycastArgs& a, Walk& w, const SceneLeaf4& leaf) {
+  const SphereL<Quad> s{{load<Quad>(leaf.sphere[0]), load<Quad>(leaf.sphere[1]), load<Quad>(leaf.sphere[2])},
+                        load<Quad>(leaf.sphere[3])};
+  const Quad t = ray_sphere_t(w.ray4, s, w.tmin4, w.tmax4);
+  bool lane_hit = any(t < Quad(kInf));
+  // Most leaves of spheres a ray enters it does not hit: nothing more to do there.
+  if (!lane_hit && leaf.box_block == detail::kNoItem && leaf.exact_mask == 0) return false;
+  float ts[4];
+  store(ts, t);
+  if (leaf.box_block != detail::kNoItem) {
+    const detail::SceneBoxes4& bx = a.boxes[leaf.box_block];
+    const auto row = [&](int r) { return load<Quad>(bx.obb[r]); };
+    const auto v3 = [&](int r) { return V3<Quad>{row(r), row(r + 1), row(r + 2)}; };
+    const ObbL<Quad> b{v3(0), v3(3), {v3(6), v3(9), v3(12)}};
+    float tb[4];
+    store(tb, ray_obb_t(w.ray4, b, w.tmin4, w.tmax4));
+    for (int k = 0; k < 4; ++k)
+      if (bx.mask >> k & 1u) ts[k] = tb[k], lane_hit = lane_hit || tb[k] < kInf;
+  }
+  if (lane_hit || leaf.exact_mask != 0) {
+    for (int k = 0; k < 4; ++k) {
+      if (leaf.exact_mask >> k & 1u) {
+        const float limit = limit_of(w, AnyHit);
+        ts[k] = a.exact(a.ctx, w.ray, leaf.item[k], w.best_t, w.best_key, limit);
+      }
+      if (!(ts[k] < kInf)) continue;
+      take(w, ts[k], leaf.key[k], leaf.item[k]);
+      if constexpr (AnyHit) return true;
+    }
+    w.limit = limit_of(w, AnyHit);
+  }
+  return false;
+}
+
 // Visits w.next and picks the one after it; false when the walk is over.
 template <bool AnyHit, bool Turns> inline bool step(const SceneRaycastArgs& a, Walk& w) {
   const Entry e = w.next;
   if (e.code & kLeafBit) {
-    const SceneLeaf4& leaf = a.leaves[e.code & ~kLeafBit];
-    const SphereL<Quad> s{{load<Quad>(leaf.sphere[0]), load<Quad>(leaf.sphere[1]), load<Quad>(leaf.sphere[2])},
-                          load<Quad>(leaf.sphere[3])};
-    const Quad t = ray_sphere_t(w.ray4, s, w.tmin4, w.tmax4);
-    bool lane_hit = any(t < Quad(kInf));
-    // Most leaves of spheres a ray enters it does not hit: nothing more to do there.
-    if (!lane_hit && leaf.box_block == detail::kNoItem && leaf.exact_mask == 0) return next_entry<Turns>(a, w);
-    float ts[4];
-    store(ts, t);
-    if (leaf.box_block != detail::kNoItem) {
-      const detail::SceneBoxes4& bx = a.boxes[leaf.box_block];
-      const auto row = [&](int r) { return load<Quad>(bx.obb[r]); };
-      const auto v3 = [&](int r) { return V3<Quad>{row(r), row(r + 1), row(r + 2)}; };
-      const ObbL<Quad> b{v3(0), v3(3), {v3(6), v3(9), v3(12)}};
-      float tb[4];
-      store(tb, ray_obb_t(w.ray4, b, w.tmin4, w.tmax4));
-      for (int k = 0; k < 4; ++k)
-        if (bx.mask >> k & 1u) ts[k] = tb[k], lane_hit = lane_hit || tb[k] < kInf;
-    }
-    if (lane_hit || leaf.exact_mask != 0) {
-      for (int k = 0; k < 4; ++k) {
-        if (leaf.exact_mask >> k & 1u) {
-          const float limit = limit_of(w, AnyHit);
-          ts[k] = a.exact(a.ctx, w.ray, leaf.item[k], w.best_t, w.best_key, limit);
-        }
-        if (!(ts[k] < kInf)) continue;
-        take(w, ts[k], leaf.key[k], leaf.item[k]);
-        if constexpr (AnyHit) return false;
-      }
-      w.limit = limit_of(w, AnyHit);
-    }
+    if (visit_leaf<AnyHit>(a, w, a.leaves[e.code & ~kLeafBit])) return false;
   } else {
     const BvhNode8& node = a.nodes[e.code];
     Oct tn = w.tmin8, tf = Oct(w.limit);
@@ -251,10 +257,165 @@ template <bool AnyHit, bool Turns> void run(const SceneRaycastArgs& a, std::size
   }
 }
 
+// ---- packets: rays from one origin walk the tree together (closest hit) ----
+//
+// As bvh_kernels.cpp's packets: eight rays from one origin whose directions agree in sign
+// walk the tree once, a node's child boxes tested against the eight rays in one 8-wide lane
+// per child (lane r: the single walk's expressions for ray r; the padded plane minus the
+// origin is the same for every ray, so it is formed once, in a float, with the lane
+// expression's bits), each child entered by the rays whose test passed, the bookkeeping paid
+// once per packet. A leaf's models are tested ray by ray by visit_leaf, as in the single
+// walk. The visiting order only decides which subtrees a ray's best t lets it skip, so every
+// ray gets the single walk's answer; any hit keeps single walks (its answer depends on the
+// order).
+
+constexpr int kPacket = 8;
+
+struct PacketEntry {
+  float near[kPacket];
+  uint32_t code;
+  unsigned mask;
+};
+
+struct Packet {
+  float o[3], near_pad[3], far_pad[3];
+  int near_row[3], far_row[3];
+  Oct inv[3], tmin;
+  float limit[kPacket];
+  PacketEntry stack[kStackSize];
+};
+
+// The packet of the rays started in W[0 .. n); false when their origins or the signs of
+// their directions differ.
+inline bool start_packet(const SceneRaycastArgs& a, const Walk* W, int n, Packet& P) {
+  alignas(32) float inv[3][kPacket], tmin[kPacket];
+  const std::size_t i0 = W[0].ray;
+  unsigned neg_all = 7, neg_any = 0;
+  for (int r = 0; r < kPacket; ++r) {
+    const std::size_t i = W[r < n ? r : 0].ray;  // lanes past n repeat ray 0 (never entered: mask)
+    if (a.ox[i] != a.ox[i0] || a.oy[i] != a.oy[i0] || a.oz[i] != a.oz[i0]) return false;
+    unsigned neg = 0;
+    const float d[3] = {a.dx[i], a.dy[i], a.dz[i]};
+    for (int k = 0; k < 3; ++k) {
+      inv[k][r] = 1.0f / d[k];
+      neg |= (std::bit_cast<uint32_t>(inv[k][r]) >> 31) << k;
+    }
+    neg_all &= neg, neg_any |= neg;
+    tmin[r] = a.tmin ? a.tmin[i] : 0.0f;
+    P.limit[r] = W[r < n ? r : 0].limit;
+  }
+  if (neg_all != neg_any) return false;
+  const float o[3] = {a.ox[i0], a.oy[i0], a.oz[i0]};
+  const float pad = a.pad[i0];
+  for (int k = 0; k < 3; ++k) {
+    const int neg = int(neg_all >> k & 1u);
+    P.near_row[k] = 2 * k + neg, P.far_row[k] = 2 * k + 1 - neg;
+    P.near_pad[k] = neg ? pad : -pad, P.far_pad[k] = neg ? -pad : pad;
+    P.o[k] = o[k], P.inv[k] = load<Oct>(inv[k]);
+  }
+  P.tmin = load<Oct>(tmin);
+  return true;
+}
+
+inline void walk_packet(const SceneRaycastArgs& a, Walk* W, unsigned rays, Packet& P) {
+  int sp = 0;
+  uint32_t code = 0;
+  unsigned mask = rays;
+  for (;;) {
+    if (code & kLeafBit) {
+      const SceneLeaf4& leaf = a.leaves[code & ~kLeafBit];
+      for (unsigned m = mask; m != 0; m &= m - 1) {
+        const int r = __builtin_ctz(m);
+        visit_leaf<false>(a, W[r], leaf);
+        P.limit[r] = W[r].limit;
+      }
+    } else {
+      const BvhNode8& node = a.nodes[code];
+      const Oct limit = load<Oct>(P.limit);
+      alignas(32) float nears[8][kPacket];
+      unsigned entered[8];
+      int order[8], n = 0;
+      for (int c = 0; c < 8; ++c) {
+        if (node.child[c] == detail::kEmptyChild) continue;
+        Oct tn = P.tmin, tf = limit;
+        for (int k = 0; k < 3; ++k) {  // the single walk's order: x, y, z, each slab value first
+          const Oct t0 = Oct((node.bounds[P.near_row[k]][c] + P.near_pad[k]) - P.o[k]) * P.inv[k];
+          const Oct t1 = Oct((node.bounds[P.far_row[k]][c] + P.far_pad[k]) - P.o[k]) * P.inv[k];
+          tn = select(t0 > tn, t0, tn);
+          tf = select(t1 < tf, t1, tf);
+        }
+        const unsigned in = lane_bits((tn <= tf + abs(tf) * Oct(kSlabSlack)) && (tn < Oct(kInf))) & mask;
+        if (in == 0) continue;
+        store(nears[c], tn);
+        entered[c] = in;
+        // Nearest first by the entry of the first ray in it; ties keep the slot order.
+        const float key = nears[c][__builtin_ctz(in)];
+        int j = n++;
+        while (j > 0 && nears[order[j - 1]][__builtin_ctz(entered[order[j - 1]])] > key) order[j] = order[j - 1], --j;
+        order[j] = c;
+      }
+      for (int j = n - 1; j > 0; --j) {
+        PacketEntry& e = P.stack[sp++];
+        const int c = order[j];
+        for (int r = 0; r < kPacket; ++r) e.near[r] = nears[c][r];
+        e.code = node.child[c], e.mask = entered[c];
+      }
+      if (n > 0) {
+        const int c = order[0];
+        const unsigned live = entered[c] & lane_bits(load<Oct>(nears[c]) <= limit);
+        if (live != 0) {
+          code = node.child[c], mask = live;
+          continue;
+        }
+      }
+    }
+    for (;;) {  // the next entry that some of its rays still enter within their limit
+      if (sp == 0) return;
+      const PacketEntry& e = P.stack[--sp];
+      const unsigned live = e.mask & lane_bits(load<Oct>(e.near) <= load<Oct>(P.limit));
+      if (live == 0) continue;
+      code = e.code, mask = live;
+      break;
+    }
+  }
+}
+
+// Rays [begin, end), all from one origin, closest hit: groups of eight rays to walk, in ray
+// order, as packets (a group whose direction signs differ walks ray by ray).
+void run_packets(const SceneRaycastArgs& a, std::size_t begin, std::size_t end) {
+  Packet P;
+  Walk W[kPacket];
+  std::size_t next = begin;
+  for (;;) {
+    int n = 0;
+    for (; n < kPacket && next < end; ++next) {
+      if (!a.walk[next]) continue;
+      start<false>(a, W[n], next);
+      W[n].limit = limit_of(W[n], false);
+      ++n;
+    }
+    if (n == 0) return;
+    if (start_packet(a, W, n, P)) {
+      walk_packet(a, W, (1u << n) - 1u, P);
+    } else {
+      for (int r = 0; r < n; ++r)
+        while (step<false, false>(a, W[r])) {
+        }
+    }
+    for (int r = 0; r < n; ++r) {
+      a.best_t[W[r].ray] = W[r].best_t;
+      a.best_key[W[r].ray] = W[r].best_key;
+      if (W[r].best_item != kNone) a.best_item[W[r].ray] = W[r].best_item;
+    }
+  }
+}
+
 }  // namespace
 
 GYRO_FLATTEN void scene_raycast(const SceneRaycastArgs& a, std::size_t begin, std::size_t end) {
-  if (a.in_turns && !one_origin(a, begin, end)) a.any_hit ? run<true, true>(a, begin, end) : run<false, true>(a, begin, end);
+  const bool origin = one_origin(a, begin, end);
+  if (origin && !a.any_hit) run_packets(a, begin, end);
+  else if (a.in_turns && !origin) a.any_hit ? run<true, true>(a, begin, end) : run<false, true>(a, begin, end);
   else a.any_hit ? run<true, false>(a, begin, end) : run<false, false>(a, begin, end);
 }
 

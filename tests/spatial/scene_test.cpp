@@ -232,6 +232,30 @@ Rays make_rays(const std::vector<Snapshot>& models, std::size_t n, uint64_t seed
   return r;
 }
 
+// make_rays' rays moved to one origin (a camera, a lidar: the batch walks such rays in
+// packets of eight), each aimed at a point of the original ray (a model's centre, a
+// silhouette, ...), sorted by the signs of their directions so that most groups of eight
+// share them (groups that do not walk ray by ray: both paths are tested). Zero directions
+// and [tmin, tmax] windows stay.
+Rays make_rays_from(const std::vector<Snapshot>& models, std::size_t n, uint64_t seed, const vec3& origin) {
+  const Rays src = make_rays(models, n, seed);
+  std::vector<std::size_t> order(n);
+  std::vector<vec3> dir(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Ray r = src.ray(i);
+    dir[i] = i % 97 == 0 ? vec3{} : (r.origin + r.direction) - origin;
+    order[i] = i;
+  }
+  const auto signs = [&](std::size_t i) { return (dir[i].x < 0) | (dir[i].y < 0) << 1 | (dir[i].z < 0) << 2; };
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return signs(a) < signs(b); });
+  Rays r;
+  for (std::size_t i : order) {
+    r.set.push(origin.x, origin.y, origin.z, dir[i].x, dir[i].y, dir[i].z);
+    r.tmin.push_back(src.tmin[i]), r.tmax.push_back(src.tmax[i]);
+  }
+  return r;
+}
+
 struct Columns {
   std::vector<float> t, nx, ny, nz, u, v;
   std::vector<int32_t> primitive;
@@ -361,6 +385,43 @@ TEST(Scene, LargeSceneRaysInTurnsEqualTheScalarWalk) {
   ASSERT_EQ(s.scene.configure(SceneSettings{}), Status::ok);
   const SceneStats st = s.scene.stats();
   EXPECT_GT(st.nodes * 256 + st.leaves * 128, std::size_t(1) << 20);  // BvhNode8, SceneLeaf4
+  for (const SimdLevel level : testing::available_levels())
+    for (const uint32_t threads : {1u, 2u}) {
+      ScopedExecution exec(level, threads);
+      Columns c(n);
+      ASSERT_EQ(raycast_closest(s.scene, rays.view(), n, c.out()), Status::ok);
+      for (std::size_t i = 0; i < n; ++i) expect_batch_matches(c, expect, rays, i);
+    }
+}
+
+// Rays from one origin walk the tree in packets (closest hit): the same answers as brute
+// force, from outside the models' cloud and from inside it.
+TEST(Scene, OneOriginRaysEqualBruteForce) {
+  for (const vec3& origin : {vec3{-90.0f, 20.0f, -70.0f}, vec3{3.0f, -2.0f, 5.0f}}) {
+    TestScene s(400, 61);
+    const Rays rays = make_rays_from(snapshot(s.scene), 1200, 62, origin);
+    std::size_t hits = 0;
+    check_raycasts(s.scene, rays, &hits);
+    EXPECT_GT(hits, 400u);
+  }
+}
+
+// The same in a tree beyond the cache, against the octree's scalar walk.
+TEST(Scene, LargeSceneOneOriginRaysEqualTheScalarWalk) {
+  TestScene s(40000, 41, 250.0f);
+  const Rays rays = make_rays_from(snapshot(s.scene), 3000, 43, {-300.0f, 40.0f, 10.0f});
+  const std::size_t n = rays.set.size();
+  SceneSettings settings;
+  settings.accel = SceneAccel::octree;
+  ASSERT_EQ(s.scene.configure(settings), Status::ok);
+  std::vector<SceneHit> expect(n);
+  std::size_t hits = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    expect[i] = raycast(s.scene, rays.ray(i), rays.tmin[i], rays.tmax[i]);
+    hits += expect[i].hit.hit;
+  }
+  EXPECT_GT(hits, n / 4);
+  ASSERT_EQ(s.scene.configure(SceneSettings{}), Status::ok);
   for (const SimdLevel level : testing::available_levels())
     for (const uint32_t threads : {1u, 2u}) {
       ScopedExecution exec(level, threads);
