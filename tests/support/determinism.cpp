@@ -208,7 +208,8 @@ uint64_t scene_geometry_batch() {
 // A terrain with seeded heights (no libm: inputs must be the same bits on every CPU) plus
 // a soup of random triangles above it: the BVH's bytes (the build must be deterministic
 // too) and closest and any hits of rays of every kind, with normals and barycentrics.
-uint64_t scene_mesh_bvh() {
+// A 96 x 96 height field with 3000 floating triangles above it (mesh_bvh, rays_one_origin).
+const MeshData& det_terrain() {
   static const MeshData mesh = [] {
     MeshData m;
     SplitMix64 rng(31);
@@ -228,6 +229,11 @@ uint64_t scene_mesh_bvh() {
     }
     return m;
   }();
+  return mesh;
+}
+
+uint64_t scene_mesh_bvh() {
+  const MeshData& mesh = det_terrain();
   static const RaySet rays = [] {
     RaySet r;
     SplitMix64 rng(32);
@@ -350,6 +356,70 @@ uint64_t scene_models() {
       }
     }
   }
+  return h.digest();
+}
+
+// Rays from one origin, which the batch raycasts walk in packets of eight: a lidar fan
+// (32 channels x 128 columns, some with a [tmin, tmax] window) over det_terrain(), and a
+// camera's fan into a scene of spheres, boxes, mesh instances and a plane; closest hits
+// with normals (and the scene's model ids and barycentrics).
+RaySet fan(const vec3& o, float az0, float az1, int columns, float el0, float el1, int channels) {
+  RaySet r;
+  for (int c = 0; c < columns; ++c) {
+    const double a = az0 + (az1 - az0) * (c + 0.5) / columns;
+    for (int k = 0; k < channels; ++k) {
+      const double e = el0 + (el1 - el0) * (k + 0.5) / channels;
+      r.push(o.x, o.y, o.z, float(std::cos(e) * std::cos(a)), float(std::sin(e)), float(std::cos(e) * std::sin(a)));
+    }
+  }
+  return r;
+}
+
+uint64_t scene_rays_one_origin() {
+  detail::StateHasher h;
+  static const RaySet lidar = fan({24.0f, 6.0f, 24.0f}, 0.0f, 6.2831853f, 128, -0.7f, 0.45f, 32);
+  std::vector<float> tmin(lidar.size(), 0.0f), tmax(lidar.size(), 60.0f);
+  for (std::size_t i = 0; i < lidar.size(); i += 11) tmin[i] = 0.5f, tmax[i] = 9.0f;
+  TriangleMesh tm;
+  if (TriangleMesh::create(det_terrain(), tm) != Status::ok) return 0;
+  RaysView lv = lidar.view();
+  lv.tmin = tmin.data(), lv.tmax = tmax.data();
+  HitSet hits(lidar.size());
+  if (raycast_closest(tm, lv, lidar.size(), hits.out()) != Status::ok) return 0;
+  h.add_floats(hits.t), h.add_floats(hits.nx), h.add_floats(hits.ny), h.add_floats(hits.nz);
+  for (int32_t k : hits.primitive) h.add_u32(uint32_t(k));
+
+  auto sphere_mesh = std::make_shared<TriangleMesh>();
+  if (TriangleMesh::create(make_sphere_mesh(1.5f, 8, 12), *sphere_mesh) != Status::ok) return 0;
+  Scene scene;
+  SplitMix64 rng(71);
+  for (int i = 0; i < 300; ++i) {
+    ModelDef d;
+    d.shape = ModelShape(i % 3);
+    d.radius = float(0.2 + 2 * rng.u());
+    d.half_extents = {float(0.1 + rng.u()), float(0.1 + 2 * rng.u()), float(0.1 + rng.u())};
+    if (d.shape == ModelShape::mesh) d.mesh = sphere_mesh;
+    d.transform.position = {float(60 * rng.u() - 30), float(60 * rng.u() - 30), float(60 * rng.u() - 30)};
+    const vec3 axis{float(rng.u() - 0.5), float(rng.u()), float(rng.u() - 0.5)};
+    const float angle = float(6 * rng.u());
+    d.transform.rotation = from_axis_angle(axis, angle);
+    ModelId id;
+    if (scene.add_model(d, &id) != Status::ok) return 0;
+  }
+  ModelDef plane;
+  plane.shape = ModelShape::plane;
+  plane.plane = {{0.0f, 1.0f, 0.0f}, -35.0f};
+  ModelId pid;
+  if (scene.add_model(plane, &pid) != Status::ok) return 0;
+  static const RaySet cam = fan({0.0f, 4.0f, -45.0f}, 0.9f, 2.25f, 96, -0.5f, 0.4f, 40);
+  const std::size_t n = cam.size();
+  std::vector<float> t(n), nx(n), ny(n), nz(n), u(n), v(n);
+  std::vector<ModelId> model(n);
+  std::vector<int32_t> prim(n);
+  const SceneHitsOut out{t.data(), model.data(), prim.data(), nx.data(), ny.data(), nz.data(), u.data(), v.data()};
+  if (raycast_closest(scene, cam.view(), n, out) != Status::ok) return 0;
+  h.add_floats(t), h.add_floats(nx), h.add_floats(ny), h.add_floats(nz), h.add_floats(u), h.add_floats(v);
+  for (std::size_t i = 0; i < n; ++i) h.add_u32(model[i].index), h.add_u32(uint32_t(prim[i]));
   return h.digest();
 }
 
@@ -701,6 +771,7 @@ const DetScene kScenes[] = {
     {"mesh_bvh", scene_mesh_bvh, 0x443954b2125dc999ull},
     {"camera_frustum", scene_camera_frustum, 0x246ff5bf8a6a766cull},
     {"scene_models", scene_models, 0xf0754d52193f4864ull},
+    {"rays_one_origin", scene_rays_one_origin, 0x1d92b6cc0b129904ull},
 #endif
 #if defined(GYRO_HAS_DYNAMICS)
     {"world_pile", scene_world_pile, 0x754cdfcd63378e65ull},
