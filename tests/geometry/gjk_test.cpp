@@ -234,7 +234,11 @@ TEST(GjkDistance, RandomHullPairsMatchBinary64BruteForce) {
   int separated = 0, overlapping_pairs = 0;
   for (int trial = 0; trial < 300; ++trial) {
     const std::vector<vec3> ca = random_cloud(rng, 6 + int(rng.u() * 20), 1.0f);
-    const std::vector<vec3> cb = random_cloud(rng, 6 + int(rng.u() * 20), float(0.2 + rng.u()));
+    // Draws first, in the order g++ evaluated these arguments (right to left; clang++ goes
+    // left to right, and would test other pairs).
+    const float scale_b = float(0.2 + rng.u());
+    const int count_b = 6 + int(rng.u() * 20);
+    const std::vector<vec3> cb = random_cloud(rng, count_b, scale_b);
     ConvexHull ha, hb;
     ASSERT_EQ(build_convex_hull(ca.data(), ca.size(), ha), Status::ok);
     ASSERT_EQ(build_convex_hull(cb.data(), cb.size(), hb), Status::ok);
