@@ -21,6 +21,7 @@
 // walk does not depend on which rays share its turns.
 #include "geometry/ray_triangle_lanes.hpp"
 #include "spatial/bvh_batch.hpp"
+#include "spatial/packet_walk.hpp"
 
 #include <bit>
 
@@ -207,28 +208,14 @@ inline bool one_origin(const BvhRaycastArgs& a, std::size_t begin, std::size_t e
   return true;
 }
 
-// ---- packets: rays from one origin walk the tree together ----
+// ---- packets: rays from one origin walk the tree together (packet_walk.hpp) ----
 //
-// Eight rays from one origin (a lidar column, a camera row) enter nearly the same nodes, so
-// a packet walks the tree once for all of them: a node's child boxes are tested against the
-// eight rays in one 8-wide lane per child (lane r is ray r, with the single walk's
-// expressions, so each (ray, box) pair gives the single walk's bits), each child is entered
-// by the rays whose test passed, and the traversal's bookkeeping (ordering, stack, pops) is
-// paid once per packet instead of once per ray. A leaf's triangles are tested ray by ray
-// with the single walk's leaf test. Which nodes a ray visits, and in what order, changes
-// only which subtrees its best t lets it skip (see the exactness notes above), so each ray
-// gets the single walk's answer. Closest hit only: an any-hit answer depends on the order
-// of the visits, and a ray's answer must not depend on the rays beside it. The rays of a
-// packet must agree on the sign of each direction component (they share near and far
-// planes); a group that does not walks ray by ray.
+// Closest hit only: an any-hit answer depends on the order of the visits, and a ray's answer
+// must not depend on the rays beside it. The rays of a packet must share their origin and
+// the sign of each direction component (they share near and far planes); a group that does
+// not walks ray by ray.
 
-constexpr int kPacket = 8;
-
-struct PacketEntry {
-  float near[kPacket];  // per ray: where it enters the box (valid where mask says)
-  uint32_t code;
-  unsigned mask;        // the rays that entered it
-};
+constexpr int kPacket = packet::kRays;
 
 struct Packet {
   float o[3];  // the rays' common origin
@@ -238,7 +225,7 @@ struct Packet {
   uint32_t best_id[kPacket];
   LeafRay leaf[kPacket];
   Quad tmin4[kPacket], tmax4[kPacket];
-  PacketEntry stack[detail::kBvhStackSize];
+  packet::Entry stack[detail::kBvhStackSize];
 };
 
 // Sets up the packet of rays idx[0 .. n) (valid rays); false when their direction signs or
@@ -275,75 +262,33 @@ inline bool start_packet(const BvhRaycastArgs& a, const std::size_t* idx, int n,
   return true;
 }
 
-// The packet's walk from the root; the rays' answers in P.best_t, P.best_id.
+// The packet's walk from the root (packet_walk.hpp); the rays' answers in P.best_t, P.best_id.
 inline void walk_packet(const Bvh8& bvh, Packet& P, unsigned rays) {
-  int sp = 0;
-  uint32_t code = 0;
-  unsigned mask = rays;
-  for (;;) {
-    if (code & kLeafBit) {
-      const BvhLeaf4& leaf = bvh.leaves[code & ~kLeafBit];
-      for (unsigned m = mask; m != 0; m &= m - 1) {
-        const int r = __builtin_ctz(m);
-        const Quad t = leaf_t(P.leaf[r], leaf, P.tmin4[r], P.tmax4[r]);
-        if (!any(t < Quad(kInf))) continue;
-        float ts[4];
-        store(ts, t);
-        for (int k = 0; k < 4; ++k)
-          if (ts[k] < P.best_t[r] || (ts[k] == P.best_t[r] && leaf.triangle[k] < P.best_id[r]))
-            P.best_t[r] = ts[k], P.best_id[r] = leaf.triangle[k];
-        P.limit[r] = P.best_t[r] + P.best_t[r] * kBestSlack;
-      }
-    } else {
-      const BvhNode8& node = bvh.nodes[code];
-      const Oct limit = load<Oct>(P.limit);
-      alignas(32) float nears[8][kPacket];
-      unsigned entered[8];
-      int order[8], n = 0;
-      for (int c = 0; c < 8; ++c) {
-        if (node.child[c] == detail::kEmptyChild) continue;
-        // bound - o is the same for every ray of the packet: once, in a float (the lane
-        // expression's bits), then times each ray's 1/d.
-        const auto slab = [&](int row, int axis) { return Oct(node.bounds[row][c] - P.o[axis]) * P.inv[axis]; };
-        const int* nr = P.near_row;
-        const int* fr = P.far_row;
-        const Oct tn = max(slab(nr[0], 0), max(slab(nr[1], 1), max(slab(nr[2], 2), P.tmin)));
-        const Oct tf = min(slab(fr[0], 0), min(slab(fr[1], 1), min(slab(fr[2], 2), limit)));
-        const unsigned in = lane_bits(tn <= tf + abs(tf) * Oct(kSlabSlack)) & mask;
-        if (in == 0) continue;
-        store(nears[c], tn);
-        entered[c] = in;
-        // Nearest first by the entry of the packet's first ray still in it; ties keep the slot order.
-        const float key = nears[c][__builtin_ctz(in)];
-        int j = n++;
-        while (j > 0 && nears[order[j - 1]][__builtin_ctz(entered[order[j - 1]])] > key) order[j] = order[j - 1], --j;
-        order[j] = c;
-      }
-      for (int j = n - 1; j > 0; --j) {
-        PacketEntry& e = P.stack[sp++];
-        const int c = order[j];
-        for (int r = 0; r < kPacket; ++r) e.near[r] = nears[c][r];
-        e.code = node.child[c], e.mask = entered[c];
-      }
-      if (n > 0) {
-        const int c = order[0];
-        const unsigned live = entered[c] & lane_bits(load<Oct>(nears[c]) <= limit);
-        if (live != 0) {
-          code = node.child[c], mask = live;
-          continue;
-        }
-      }
+  // bound - o is the same for every ray of the packet: once, in a float (the lane
+  // expression's bits), then times each ray's 1/d.
+  const auto enter = [&](const BvhNode8& node, int c, const Oct& limit, Oct& tn) {
+    const auto slab = [&](int row, int axis) { return Oct(node.bounds[row][c] - P.o[axis]) * P.inv[axis]; };
+    const int* nr = P.near_row;
+    const int* fr = P.far_row;
+    tn = max(slab(nr[0], 0), max(slab(nr[1], 1), max(slab(nr[2], 2), P.tmin)));
+    const Oct tf = min(slab(fr[0], 0), min(slab(fr[1], 1), min(slab(fr[2], 2), limit)));
+    return lane_bits(tn <= tf + abs(tf) * Oct(kSlabSlack));
+  };
+  const auto visit = [&](uint32_t code, unsigned mask) {
+    const BvhLeaf4& leaf = bvh.leaves[code & ~kLeafBit];
+    for (unsigned m = mask; m != 0; m &= m - 1) {
+      const int r = __builtin_ctz(m);
+      const Quad t = leaf_t(P.leaf[r], leaf, P.tmin4[r], P.tmax4[r]);
+      if (!any(t < Quad(kInf))) continue;
+      float ts[4];
+      store(ts, t);
+      for (int k = 0; k < 4; ++k)
+        if (ts[k] < P.best_t[r] || (ts[k] == P.best_t[r] && leaf.triangle[k] < P.best_id[r]))
+          P.best_t[r] = ts[k], P.best_id[r] = leaf.triangle[k];
+      P.limit[r] = P.best_t[r] + P.best_t[r] * kBestSlack;
     }
-    // The next entry that some of its rays still enter within their best t.
-    for (;;) {
-      if (sp == 0) return;
-      const PacketEntry& e = P.stack[--sp];
-      const unsigned live = e.mask & lane_bits(load<Oct>(e.near) <= load<Oct>(P.limit));
-      if (live == 0) continue;
-      code = e.code, mask = live;
-      break;
-    }
-  }
+  };
+  packet::walk(bvh.nodes.data(), P.stack, P.limit, rays, enter, visit);
 }
 
 template <bool AnyHit, bool Turns> void run(const BvhRaycastArgs& a, std::size_t begin, std::size_t end) {

@@ -17,6 +17,7 @@
 // Any hit: a leaf's items are tried in lane order and the walk stops at the first hit, the
 // order the scalar walk tries them in.
 #include "geometry/ray_lanes.hpp"
+#include "spatial/packet_walk.hpp"
 #include "spatial/scene_rays.hpp"
 
 #include <bit>
@@ -257,32 +258,20 @@ template <bool AnyHit, bool Turns> void run(const SceneRaycastArgs& a, std::size
   }
 }
 
-// ---- packets: rays from one origin walk the tree together (closest hit) ----
+// ---- packets: rays from one origin walk the tree together (packet_walk.hpp) ----
 //
-// As bvh_kernels.cpp's packets: eight rays from one origin whose directions agree in sign
-// walk the tree once, a node's child boxes tested against the eight rays in one 8-wide lane
-// per child (lane r: the single walk's expressions for ray r; the padded plane minus the
-// origin is the same for every ray, so it is formed once, in a float, with the lane
-// expression's bits), each child entered by the rays whose test passed, the bookkeeping paid
-// once per packet. A leaf's models are tested ray by ray by visit_leaf, as in the single
-// walk. The visiting order only decides which subtrees a ray's best t lets it skip, so every
-// ray gets the single walk's answer; any hit keeps single walks (its answer depends on the
-// order).
+// Closest hit only (an any-hit answer depends on the visiting order); a leaf's models are
+// tested ray by ray by visit_leaf, as in the single walk; a group whose origins or direction
+// signs differ walks ray by ray.
 
-constexpr int kPacket = 8;
-
-struct PacketEntry {
-  float near[kPacket];
-  uint32_t code;
-  unsigned mask;
-};
+constexpr int kPacket = packet::kRays;
 
 struct Packet {
   float o[3], near_pad[3], far_pad[3];
   int near_row[3], far_row[3];
   Oct inv[3], tmin;
   float limit[kPacket];
-  PacketEntry stack[kStackSize];
+  packet::Entry stack[kStackSize];
 };
 
 // The packet of the rays started in W[0 .. n); false when their origins or the signs of
@@ -317,67 +306,30 @@ inline bool start_packet(const SceneRaycastArgs& a, const Walk* W, int n, Packet
   return true;
 }
 
+// The packet's walk from the root (packet_walk.hpp); the rays' answers in W.
 inline void walk_packet(const SceneRaycastArgs& a, Walk* W, unsigned rays, Packet& P) {
-  int sp = 0;
-  uint32_t code = 0;
-  unsigned mask = rays;
-  for (;;) {
-    if (code & kLeafBit) {
-      const SceneLeaf4& leaf = a.leaves[code & ~kLeafBit];
-      for (unsigned m = mask; m != 0; m &= m - 1) {
-        const int r = __builtin_ctz(m);
-        visit_leaf<false>(a, W[r], leaf);
-        P.limit[r] = W[r].limit;
-      }
-    } else {
-      const BvhNode8& node = a.nodes[code];
-      const Oct limit = load<Oct>(P.limit);
-      alignas(32) float nears[8][kPacket];
-      unsigned entered[8];
-      int order[8], n = 0;
-      for (int c = 0; c < 8; ++c) {
-        if (node.child[c] == detail::kEmptyChild) continue;
-        Oct tn = P.tmin, tf = limit;
-        for (int k = 0; k < 3; ++k) {  // the single walk's order: x, y, z, each slab value first
-          const Oct t0 = Oct((node.bounds[P.near_row[k]][c] + P.near_pad[k]) - P.o[k]) * P.inv[k];
-          const Oct t1 = Oct((node.bounds[P.far_row[k]][c] + P.far_pad[k]) - P.o[k]) * P.inv[k];
-          tn = select(t0 > tn, t0, tn);
-          tf = select(t1 < tf, t1, tf);
-        }
-        const unsigned in = lane_bits((tn <= tf + abs(tf) * Oct(kSlabSlack)) && (tn < Oct(kInf))) & mask;
-        if (in == 0) continue;
-        store(nears[c], tn);
-        entered[c] = in;
-        // Nearest first by the entry of the first ray in it; ties keep the slot order.
-        const float key = nears[c][__builtin_ctz(in)];
-        int j = n++;
-        while (j > 0 && nears[order[j - 1]][__builtin_ctz(entered[order[j - 1]])] > key) order[j] = order[j - 1], --j;
-        order[j] = c;
-      }
-      for (int j = n - 1; j > 0; --j) {
-        PacketEntry& e = P.stack[sp++];
-        const int c = order[j];
-        for (int r = 0; r < kPacket; ++r) e.near[r] = nears[c][r];
-        e.code = node.child[c], e.mask = entered[c];
-      }
-      if (n > 0) {
-        const int c = order[0];
-        const unsigned live = entered[c] & lane_bits(load<Oct>(nears[c]) <= limit);
-        if (live != 0) {
-          code = node.child[c], mask = live;
-          continue;
-        }
-      }
+  // (bound + pad) - o is the same for every ray of the packet: once, in a float (the lane
+  // expression's bits), then times each ray's 1/d.
+  const auto enter = [&](const BvhNode8& node, int c, const Oct& limit, Oct& tn) {
+    tn = P.tmin;
+    Oct tf = limit;
+    for (int k = 0; k < 3; ++k) {  // the single walk's order: x, y, z, each slab value first
+      const Oct t0 = Oct((node.bounds[P.near_row[k]][c] + P.near_pad[k]) - P.o[k]) * P.inv[k];
+      const Oct t1 = Oct((node.bounds[P.far_row[k]][c] + P.far_pad[k]) - P.o[k]) * P.inv[k];
+      tn = select(t0 > tn, t0, tn);
+      tf = select(t1 < tf, t1, tf);
     }
-    for (;;) {  // the next entry that some of its rays still enter within their limit
-      if (sp == 0) return;
-      const PacketEntry& e = P.stack[--sp];
-      const unsigned live = e.mask & lane_bits(load<Oct>(e.near) <= load<Oct>(P.limit));
-      if (live == 0) continue;
-      code = e.code, mask = live;
-      break;
+    return lane_bits((tn <= tf + abs(tf) * Oct(kSlabSlack)) && (tn < Oct(kInf)));
+  };
+  const auto visit = [&](uint32_t code, unsigned mask) {
+    const SceneLeaf4& leaf = a.leaves[code & ~kLeafBit];
+    for (unsigned m = mask; m != 0; m &= m - 1) {
+      const int r = __builtin_ctz(m);
+      visit_leaf<false>(a, W[r], leaf);
+      P.limit[r] = W[r].limit;
     }
-  }
+  };
+  packet::walk(a.nodes, P.stack, P.limit, rays, enter, visit);
 }
 
 // Rays [begin, end), all from one origin, closest hit: groups of eight rays to walk, in ray
