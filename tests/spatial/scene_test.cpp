@@ -368,9 +368,9 @@ TEST(Scene, RaycastsEqualBruteForceInBothModes) {
 // The BVH kernel walks a tree larger than a core's L2 cache (about 1 MiB of nodes and
 // leaves) with eight rays taking turns, a smaller one a ray at a time (every other test
 // here): both must give the octree's scalar walk, bit for bit, at every level and thread count.
-TEST(Scene, LargeSceneRaysInTurnsEqualTheScalarWalk) {
-  TestScene s(40000, 41, 250.0f);
-  const Rays rays = make_rays(snapshot(s.scene), 3000, 42);
+// The batch closest hits of a scene's BVH equal the octree's scalar walk, ray for ray, at
+// every level and on 1 and 2 threads.
+void expect_batch_equals_octree_walk(TestScene& s, const Rays& rays) {
   const std::size_t n = rays.set.size();
   SceneSettings settings;
   settings.accel = SceneAccel::octree;
@@ -394,6 +394,11 @@ TEST(Scene, LargeSceneRaysInTurnsEqualTheScalarWalk) {
     }
 }
 
+TEST(Scene, LargeSceneRaysInTurnsEqualTheScalarWalk) {
+  TestScene s(40000, 41, 250.0f);
+  expect_batch_equals_octree_walk(s, make_rays(snapshot(s.scene), 3000, 42));
+}
+
 // Rays from one origin walk the tree in packets (closest hit): the same answers as brute
 // force, from outside the models' cloud and from inside it.
 TEST(Scene, OneOriginRaysEqualBruteForce) {
@@ -409,26 +414,7 @@ TEST(Scene, OneOriginRaysEqualBruteForce) {
 // The same in a tree beyond the cache, against the octree's scalar walk.
 TEST(Scene, LargeSceneOneOriginRaysEqualTheScalarWalk) {
   TestScene s(40000, 41, 250.0f);
-  const Rays rays = make_rays_from(snapshot(s.scene), 3000, 43, {-300.0f, 40.0f, 10.0f});
-  const std::size_t n = rays.set.size();
-  SceneSettings settings;
-  settings.accel = SceneAccel::octree;
-  ASSERT_EQ(s.scene.configure(settings), Status::ok);
-  std::vector<SceneHit> expect(n);
-  std::size_t hits = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    expect[i] = raycast(s.scene, rays.ray(i), rays.tmin[i], rays.tmax[i]);
-    hits += expect[i].hit.hit;
-  }
-  EXPECT_GT(hits, n / 4);
-  ASSERT_EQ(s.scene.configure(SceneSettings{}), Status::ok);
-  for (const SimdLevel level : testing::available_levels())
-    for (const uint32_t threads : {1u, 2u}) {
-      ScopedExecution exec(level, threads);
-      Columns c(n);
-      ASSERT_EQ(raycast_closest(s.scene, rays.view(), n, c.out()), Status::ok);
-      for (std::size_t i = 0; i < n; ++i) expect_batch_matches(c, expect, rays, i);
-    }
+  expect_batch_equals_octree_walk(s, make_rays_from(snapshot(s.scene), 3000, 43, {-300.0f, 40.0f, 10.0f}));
 }
 
 TEST(Scene, RaycastsStayExactAfterRemovesMovesAndReparenting) {
