@@ -2,7 +2,8 @@
 // own, testing a node's eight child boxes in one 8-wide lane (Oct: one AVX register, or two
 // Quads) and a leaf's four triangles in one 4-wide lane (Quad); eight rays from different
 // origins take turns, one visit each, so that each one's next node arrives from memory while
-// the others work.
+// the others work. Rays from one origin (closest hit) walk in packets of eight instead
+// (packet_walk.hpp: a child box against eight rays per lane).
 //
 // Exactness: the answer is the brute-force one, the smallest (t, triangle index) over every
 // triangle the watertight test of ray_triangle_lanes.hpp hits in [tmin, tmax]. The order in
