@@ -172,7 +172,6 @@ template <ConvexType T> inline vec3 core_support(const ConvexShape& s, const vec
   else return local_support(s, d, true);
 }
 
-
 // B placed in A's frame, with B's type known. For a box, the rows of rot_b scaled by the
 // half extents are formed once: (+-h) * r == +-(h * r) exactly, so lb * rot_b + pos_b
 // keeps its bits with three selects and three additions per component.
