@@ -117,11 +117,21 @@ template <class L> inline V3<L> to_frame(const ObbL<L>& b, const V3<L>& v) {
 /// whose bits the pinned determinism hashes hold), so t is bit-identical to it except
 /// where its c/q root is wild (the repair below): there that kernel reported hits off the
 /// sphere.
-template <class L> inline L ray_sphere_t(const RayL<L>& ray, const SphereL<L>& s, L tmin, L tmax) {
-  const V3<L>& d = ray.d;
+/// What ray_sphere_t needs of the direction alone: a walk that tests one ray against many
+/// leaves forms it once (a division off every leaf's critical path; the same bits).
+template <class L> struct RayDd {
+  L dd, inv_dd;
+};
+template <class L> inline RayDd<L> ray_dd(const V3<L>& d) {
   const L dd = (d.x * d.x + d.y * d.y) + d.z * d.z;
+  return {dd, L(1.0f) / dd};
+}
+
+template <class L>
+inline L ray_sphere_t(const RayL<L>& ray, const RayDd<L>& k, const SphereL<L>& s, L tmin, L tmax) {
+  const V3<L>& d = ray.d;
+  const L dd = k.dd, inv_dd = k.inv_dd;
   const auto ray_ok = (dd >= L(0x1p-126f)) && (dd <= L(0x1.fffffep127f));
-  const L inv_dd = L(1.0f) / dd;
   const V3<L> oc = ray.o - s.c;
   const L b = -((oc.x * d.x + oc.y * d.y) + oc.z * d.z);
   const L sc = b * inv_dd;
@@ -144,6 +154,9 @@ template <class L> inline L ray_sphere_t(const RayL<L>& ray, const SphereL<L>& s
   const L t = select(tn >= tmin, tn, tf);
   const auto hit = crosses && ray_ok && (t >= tmin) && (t <= tmax) && (t < detail_ray::inf<L>());
   return select(hit, t, detail_ray::inf<L>()) + L(0.0f);
+}
+template <class L> inline L ray_sphere_t(const RayL<L>& ray, const SphereL<L>& s, L tmin, L tmax) {
+  return ray_sphere_t(ray, ray_dd(ray.d), s, tmin, tmax);
 }
 
 /// Outward unit normal at the hit ray.o + t ray.d. The offset from the centre is taken as

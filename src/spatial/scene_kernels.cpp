@@ -47,8 +47,9 @@ struct Entry {
 };
 
 struct Walk {
-  Oct o[3], inv[3], near_pad[3], far_pad[3], tmin8;
+  Oct o_near[3], o_far[3], inv[3], tmin8;  // the origin moved by the pad: o_near[k] - bound is the widened slab
   RayL<Quad> ray4;
+  RayDd<Quad> dd4;
   Quad tmin4, tmax4;
   int near_row[3], far_row[3];
   float tmax, best_t, limit;
@@ -84,15 +85,18 @@ template <bool Turns> inline void start(const SceneRaycastArgs& a, Walk& w, std:
     const float inv = 1.0f / d[k];
     const int neg = int(std::bit_cast<uint32_t>(inv) >> 31);
     // The near plane of a slab is the box's low side widened down (high side widened up
-    // when the direction is negative); x + (-pad) is x - pad to the bit.
+    // when the direction is negative): the origin moves the other way, once per ray, so a
+    // plane costs a subtraction and a product (scene.cpp's header: a rounding of the origin
+    // is far inside the pads).
     w.near_row[k] = 2 * k + neg, w.far_row[k] = 2 * k + 1 - neg;
-    w.near_pad[k] = Oct(neg ? pad : -pad), w.far_pad[k] = Oct(neg ? -pad : pad);
-    w.o[k] = Oct(o[k]), w.inv[k] = Oct(inv);
+    w.o_near[k] = Oct(neg ? o[k] - pad : o[k] + pad), w.o_far[k] = Oct(neg ? o[k] + pad : o[k] - pad);
+    w.inv[k] = Oct(inv);
   }
   const float tmin = a.tmin ? a.tmin[i] : 0.0f;
   w.tmax = a.tmax ? a.tmax[i] : kInf;
   w.tmin8 = Oct(tmin), w.tmin4 = Quad(tmin), w.tmax4 = Quad(w.tmax);
   w.ray4 = {{Quad(o[0]), Quad(o[1]), Quad(o[2])}, {Quad(d[0]), Quad(d[1]), Quad(d[2])}};
+  w.dd4 = ray_dd(w.ray4.d);
   w.best_t = a.best_t[i], w.best_key = a.best_key[i], w.best_item = kNone;
   w.ray = i;
   w.next = {0, tmin};
@@ -126,7 +130,7 @@ template <bool Turns> inline bool next_entry(const SceneRaycastArgs& a, Walk& w)
 template <bool AnyHit> inline bool visit_leaf(const SceneRaycastArgs& a, Walk& w, const SceneLeaf4& leaf) {
   const SphereL<Quad> s{{load<Quad>(leaf.sphere[0]), load<Quad>(leaf.sphere[1]), load<Quad>(leaf.sphere[2])},
                         load<Quad>(leaf.sphere[3])};
-  const Quad t = ray_sphere_t(w.ray4, s, w.tmin4, w.tmax4);
+  const Quad t = ray_sphere_t(w.ray4, w.dd4, s, w.tmin4, w.tmax4);
   bool lane_hit = any(t < Quad(kInf));
   // Most leaves of spheres a ray enters it does not hit: nothing more to do there.
   if (!lane_hit && leaf.box_block == detail::kNoItem && leaf.exact_mask == 0) return false;
@@ -166,10 +170,10 @@ template <bool AnyHit, bool Turns> inline bool step(const SceneRaycastArgs& a, W
     const BvhNode8& node = a.nodes[e.code];
     Oct tn = w.tmin8, tf = Oct(w.limit);
     for (int k = 0; k < 3; ++k) {  // the scalar walk's order: x, y, z, each slab value first
-      const Oct t0 = ((load<Oct>(node.bounds[w.near_row[k]]) + w.near_pad[k]) - w.o[k]) * w.inv[k];
-      const Oct t1 = ((load<Oct>(node.bounds[w.far_row[k]]) + w.far_pad[k]) - w.o[k]) * w.inv[k];
-      tn = select(t0 > tn, t0, tn);
-      tf = select(t1 < tf, t1, tf);
+      const Oct t0 = (load<Oct>(node.bounds[w.near_row[k]]) - w.o_near[k]) * w.inv[k];
+      const Oct t1 = (load<Oct>(node.bounds[w.far_row[k]]) - w.o_far[k]) * w.inv[k];
+      tn = max(t0, tn);  // t0 > tn ? t0 : tn (lanes.hpp), one instruction on x86
+      tf = min(t1, tf);
     }
     // An empty slot's (+inf, -inf) box gives tn = +inf for any valid ray, so it never passes.
     const unsigned mask = lane_bits((tn <= tf + abs(tf) * Oct(kSlabSlack)) && (tn < Oct(kInf)));
@@ -271,7 +275,7 @@ template <bool AnyHit, bool Turns> void run(const SceneRaycastArgs& a, std::size
 constexpr int kPacket = packet::kRays;
 
 struct Packet {
-  float o[3], near_pad[3], far_pad[3];
+  float o_near[3], o_far[3];
   int near_row[3], far_row[3];
   Oct inv[3], tmin;
   float limit[kPacket];
@@ -303,8 +307,8 @@ inline bool start_packet(const SceneRaycastArgs& a, const Walk* W, int n, Packet
   for (int k = 0; k < 3; ++k) {
     const int neg = int(neg_all >> k & 1u);
     P.near_row[k] = 2 * k + neg, P.far_row[k] = 2 * k + 1 - neg;
-    P.near_pad[k] = neg ? pad : -pad, P.far_pad[k] = neg ? -pad : pad;
-    P.o[k] = o[k], P.inv[k] = load<Oct>(inv[k]);
+    P.o_near[k] = neg ? o[k] - pad : o[k] + pad, P.o_far[k] = neg ? o[k] + pad : o[k] - pad;
+    P.inv[k] = load<Oct>(inv[k]);
   }
   P.tmin = load<Oct>(tmin);
   return true;
@@ -312,16 +316,16 @@ inline bool start_packet(const SceneRaycastArgs& a, const Walk* W, int n, Packet
 
 // The packet's walk from the root (packet_walk.hpp); the rays' answers in W.
 inline void walk_packet(const SceneRaycastArgs& a, Walk* W, unsigned rays, Packet& P) {
-  // (bound + pad) - o is the same for every ray of the packet: once, in a float (the lane
-  // expression's bits), then times each ray's 1/d.
+  // bound - (o moved by the pad) is the same for every ray of the packet: once, in a float
+  // (the lane expression's bits), then times each ray's 1/d.
   const auto enter = [&](const BvhNode8& node, int c, const Oct& limit, Oct& tn) {
     tn = P.tmin;
     Oct tf = limit;
     for (int k = 0; k < 3; ++k) {  // the single walk's order: x, y, z, each slab value first
-      const Oct t0 = Oct((node.bounds[P.near_row[k]][c] + P.near_pad[k]) - P.o[k]) * P.inv[k];
-      const Oct t1 = Oct((node.bounds[P.far_row[k]][c] + P.far_pad[k]) - P.o[k]) * P.inv[k];
-      tn = select(t0 > tn, t0, tn);
-      tf = select(t1 < tf, t1, tf);
+      const Oct t0 = Oct(node.bounds[P.near_row[k]][c] - P.o_near[k]) * P.inv[k];
+      const Oct t1 = Oct(node.bounds[P.far_row[k]][c] - P.o_far[k]) * P.inv[k];
+      tn = max(t0, tn);  // t0 > tn ? t0 : tn (lanes.hpp), one instruction on x86
+      tf = min(t1, tf);
     }
     return lane_bits((tn <= tf + abs(tf) * Oct(kSlabSlack)) && (tn < Oct(kInf)));
   };
