@@ -4,17 +4,19 @@
 //
 // Exactness of the traversal. Every model's tree box is its world shape's AABB padded by
 // 2^-16 of its magnitude (|centre| + half extent), and a ray widens every box it tests by
-// 2^-17 of its origin's magnitude; together they exceed the 16 ulps of M (|origin - centre|
-// + size) by which gyro's raycasts may stray from the exact surface (gyro/raycast.hpp), and
-// the rounding of a mesh ray's move into its frame. So a model hit at t has the exact point
-// at t inside every box above it, and the slab test (Ize's robust traversal: entry may
-// exceed exit by 2^-18 of the exit; a slab product that is NaN, 0 * inf, is ignored) enters
-// them all. A subtree is skipped only when it is entered beyond the best t by 2^-16 of it,
-// far more than the few ulps by which a box's computed entry can follow the exact one.
-// Ties go to the lowest id index, so neither the structure nor the visiting order can
-// change the answer: both modes give the brute-force loop's bits. Overlap queries prune
-// with boxes padded the same way around the query shape (far more than the 1e-6 relative
-// slack of gyro's box tests), then run the exact test on each candidate.
+// 2^-17 of its origin's magnitude (the BVH kernels move the origin by that pad instead, once
+// per ray: the origin's rounding, an ulp of it, is far inside the pads); together they
+// exceed the 16 ulps of M (|origin - centre| + size) by which gyro's raycasts may stray from
+// the exact surface (gyro/raycast.hpp), and the rounding of a mesh ray's move into its
+// frame. So a model hit at t has the exact point at t inside every box above it, and the
+// slab test (Ize's robust traversal: entry may exceed exit by 2^-18 of the exit; a slab
+// product that is NaN, 0 * inf, is ignored) enters them all. A subtree is skipped only
+// when it is entered beyond the best t by 2^-16 of it, far more than the few ulps by which
+// a box's computed entry can follow the exact one. Ties go to the lowest id index, so
+// neither the structure nor the visiting order can change the answer: both modes give the
+// brute-force loop's bits. Overlap queries prune with boxes padded the same way around the
+// query shape (far more than the 1e-6 relative slack of gyro's box tests), then run the
+// exact test on each candidate.
 #include "gyro/scene.hpp"
 
 #include "core/error.hpp"
@@ -789,8 +791,8 @@ void trace_block(const Scene::Impl& m, const RaysView& rays, std::size_t begin, 
     best_t[k] = kInf, best_key[k] = kNoIndex, best_item[k] = detail::kNoItem, pad[k] = 0.0f, walk[k] = 0;
     b.cached_item[k] = detail::kNoItem;
     if (!valid[k]) continue;
-    RayWalk w = b.walker(k);
-    if (!m.plane_slots.empty()) {
+    if (!m.plane_slots.empty()) {  // (a walker's three divisions only where there are planes)
+      RayWalk w = b.walker(k);
       b.cached[k] = w.planes();
       best_t[k] = w.best_t(), best_key[k] = w.best_index();
       if (best_key[k] != kNoIndex) b.cached_item[k] = kPlaneItem;
