@@ -3,14 +3,17 @@
 // then the box-pair batches (convex_intersect_batch, convex_distance_batch,
 // convex_penetration_batch: GJK over SIMD lanes, per level, results bit-identical to the
 // scalar queries; penetration also with separated_distance off, where separated pairs stop
-// at a separating axis as libccd's and Bullet's penetration calls do), and with --peers libccd (GJK and MPR intersection, GJK+EPA and MPR penetration) and
-// Bullet (btGjkEpaSolver2 Distance / Penetration, btGjkPairDetector with its GJK-EPA depth
-// solver; box margins 0) on the same pairs in the same run.
+// at a separating axis as libccd's and Bullet's penetration calls do), the C ABI's four pair
+// calls (gyro_convex_*_pairs: box-box pairs over the lanes, from arrays of C structs), and
+// with --peers libccd (GJK and MPR intersection, GJK+EPA and MPR penetration) and Bullet
+// (btGjkEpaSolver2 Distance / Penetration, btGjkPairDetector with its GJK-EPA depth solver;
+// box margins 0) on the same pairs in the same run.
 //
 // Every line carries its error against the binary64 15-axis SAT: verdicts disagreeing (and
 // how many of those lie within 1e-4 of touching), the max depth error on pairs both call
 // overlapping, and for distance methods the largest amount by which the reported distance
 // falls below the SAT separation (a lower bound of the true distance).
+#include "gyro.h"
 #include "gyro/convex.hpp"
 #include "peers.hpp"
 #include "reference.hpp"
@@ -177,6 +180,47 @@ void run_gyro_batch(const BoxPairs& p, const std::vector<double>& sep, std::size
   set_simd_level(SimdLevel::automatic);
 }
 
+// The C ABI's pair calls on the same pairs (arrays of gyro_convex_shape and gyro_convex_pose),
+// at the level the library picks: their box-box pairs run over SIMD lanes, the batches' bits.
+void run_gyro_capi(const BoxPairs& p, const std::vector<double>& sep, std::size_t n, int reps) {
+  std::vector<gyro_convex_shape> a(n), b(n);
+  std::vector<gyro_convex_pose> pa(n), pb(n);
+  const auto fill = [](const BoxSet& s, std::size_t i, gyro_convex_shape& shape, gyro_convex_pose& pose) {
+    std::memset(&shape, 0, sizeof shape);
+    shape.type = GYRO_CONVEX_BOX, shape.half_extents = {s.hx[i], s.hy[i], s.hz[i]};
+    const ConvexPose q = box_pose(s, i);
+    pose.position = {q.position.x, q.position.y, q.position.z};
+    for (int k = 0; k < 3; ++k) pose.rotation[k] = {q.rotation.m[k][0], q.rotation.m[k][1], q.rotation.m[k][2]};
+  };
+  for (std::size_t i = 0; i < n; ++i) fill(p.a, i, a[i], pa[i]), fill(p.b, i, b[i], pb[i]);
+  using PairsFn = gyro_status (*)(const gyro_convex_shape*, const gyro_convex_pose*, const gyro_convex_shape*,
+                                  const gyro_convex_pose*, int32_t, gyro_convex_result*);
+  const struct {
+    const char* name;
+    PairsFn fn;
+    bool depth, dist;
+  } methods[] = {{"capi_convex_intersect_pairs", gyro_convex_intersect_pairs, false, false},
+                 {"capi_convex_distance_pairs", gyro_convex_distance_pairs, false, true},
+                 {"capi_convex_penetration_pairs", gyro_convex_penetration_pairs, true, true},
+                 {"capi_convex_contact_pairs", gyro_convex_contact_pairs, true, false}};
+  const uint32_t threads = gyro_get_thread_count();
+  gyro_set_thread_count(1);
+  std::vector<gyro_convex_result> out(n);
+  for (const auto& m : methods) {
+    const double ms = median_ms(reps, [&] { m.fn(a.data(), pa.data(), b.data(), pb.data(), int32_t(n), out.data()); });
+    std::size_t limits = 0;
+    for (std::size_t i = 0; i < n; ++i) limits += out[i].status == GYRO_CONVEX_ITERATION_LIMIT;
+    const auto hit = [&](std::size_t i) {
+      return out[i].status == GYRO_CONVEX_INTERSECTING || out[i].status == GYRO_CONVEX_TOUCHING;
+    };
+    const Score s = score(
+        sep, n, hit, [&](std::size_t i) { return -double(out[i].distance); },
+        [&](std::size_t i) { return m.dist ? double(out[i].distance) : kNan; });
+    emit("gyro", m.name, simd_level_name(simd_level()), ms, n, s, m.depth, m.dist, reps, limits);
+  }
+  gyro_set_thread_count(threads);
+}
+
 #if defined(GYRO_BENCH_HAS_BULLET)
 btTransform bt_transform(const BoxSet& s, std::size_t k) {
   const btMatrix3x3 r(s.r[0][k], s.r[1][k], s.r[2][k], s.r[3][k], s.r[4][k], s.r[5][k], s.r[6][k], s.r[7][k], s.r[8][k]);
@@ -295,6 +339,7 @@ void run_gjk(const Options& o) {
               overlapping_pairs);
   run_gyro(p, sep, n, o.reps);
   run_gyro_batch(p, sep, n, o);
+  run_gyro_capi(p, sep, n, o.reps);
   if (!o.peers) return;
   const int peer_reps = std::max(1, std::min(o.reps, 3));
   run_ccd(p, sep, n, peer_reps);

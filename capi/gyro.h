@@ -34,7 +34,7 @@ extern "C" {
 
 /** ABI version this header describes: (major << 16) | minor. A library with the same
  *  major and a minor >= the header's is compatible. */
-#define GYRO_ABI_VERSION ((1u << 16) | 5u)
+#define GYRO_ABI_VERSION ((1u << 16) | 6u)
 
 /** The ABI version of the linked library; compare with GYRO_ABI_VERSION. */
 GYRO_API uint32_t gyro_abi_version(void);
@@ -1107,6 +1107,16 @@ GYRO_API gyro_status gyro_convex_distance_pairs(const gyro_convex_shape* a, cons
 GYRO_API gyro_status gyro_convex_penetration_pairs(const gyro_convex_shape* a, const gyro_convex_pose* pa,
                                                    const gyro_convex_shape* b, const gyro_convex_pose* pb,
                                                    int32_t count, gyro_convex_result* out);
+/** Contact generation's query (ABI 1.6): overlapping pairs get gyro_convex_penetration_pairs'
+ *  answer bit for bit; separated pairs stop at the first separating axis, as in
+ *  gyro_convex_intersect_pairs (GYRO_CONVEX_SEPARATED; distance, normal and witnesses are
+ *  those at the exit, the distance an upper bound of the gap). Faster where most pairs are
+ *  apart: a broadphase's candidate pairs.
+ *  All four pair calls run box-box pairs over SIMD lanes (16 pairs at once with AVX-512), with
+ *  the same bits as the other pairs' one-by-one path (ABI 1.6). */
+GYRO_API gyro_status gyro_convex_contact_pairs(const gyro_convex_shape* a, const gyro_convex_pose* pa,
+                                               const gyro_convex_shape* b, const gyro_convex_pose* pb,
+                                               int32_t count, gyro_convex_result* out);
 
 /* ------------------------------------------------------------------ snapshot and restore (ABI 1.5)
  *

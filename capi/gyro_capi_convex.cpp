@@ -1,5 +1,6 @@
 // The C ABI of convex shapes (ABI 1.4): hull handles and their getters and mass properties,
-// and GJK/EPA queries on arrays of pairs, over gyro/convex.hpp.
+// and GJK/EPA queries on arrays of pairs, over gyro/convex.hpp (box-box pairs through the
+// box-pair batches, GJK over SIMD lanes, since ABI 1.6; the contact call is ABI 1.6).
 //
 // Whole-call errors (NULL arrays, negative counts) are found before anything is written. A
 // pair that cannot be answered is flagged GYRO_CONVEX_INVALID_INPUT by the C layer's own
@@ -20,7 +21,9 @@
 #include <cstddef>
 #include <cstring>
 #include <memory>
+#include <new>
 #include <type_traits>
+#include <vector>
 
 namespace {
 
@@ -56,8 +59,9 @@ static_assert(sizeof(gyro_vec3) == sizeof(gyro::vec3) && alignof(gyro_vec3) == a
               std::is_standard_layout_v<gyro::vec3>);
 
 /// Pairs per parallel chunk: a function of nothing but this constant, so the chunks (and the
-/// results) never depend on the thread count. A query takes about a microsecond.
-constexpr std::size_t kPairChunk = 64;
+/// results) never depend on the thread count. A query takes about a microsecond; a chunk's
+/// box pairs fill one block of the box-pair batches' lanes.
+constexpr std::size_t kPairChunk = 128;
 
 /// How far a pose's rotation rows may be from orthonormal (dot products within this of 0 or 1).
 constexpr float kRotationTolerance = 1e-3f;
@@ -191,7 +195,103 @@ gyro_convex_result invalid_result() {
   return c;
 }
 
-enum class Query { intersect, distance, penetration };
+enum class Query { intersect, distance, penetration, contact };
+
+gyro::ConvexQueryOptions options_of(Query query) {
+  gyro::ConvexQueryOptions o;
+  o.separated_distance = query != Query::contact;
+  return o;
+}
+
+gyro::ConvexResult query_pair(Query query, const gyro::ConvexShape& sa, const gyro::ConvexPose& qa,
+                              const gyro::ConvexShape& sb, const gyro::ConvexPose& qb,
+                              const gyro::ConvexQueryOptions& options) {
+  switch (query) {
+    case Query::intersect: return gyro::convex_intersect(sa, qa, sb, qb, options);
+    case Query::distance: return gyro::convex_distance(sa, qa, sb, qb, options);
+    default: return gyro::convex_penetration(sa, qa, sb, qb, options);  // penetration, contact
+  }
+}
+
+gyro_convex_result c_answer(const gyro::ConvexResult& r) {
+  return r.status == gyro::ConvexStatus::invalid_input ? invalid_result() : c_result(r);
+}
+
+/// A chunk's box-box pairs in the column form of gyro::ConvexBoxPairs, for the lanes.
+struct BoxColumns {
+  std::vector<float> col;           // 30 columns of n: A's centre, half extents, rotation, then B's
+  std::vector<std::size_t> index;   // the pairs' indices in the call
+  std::vector<gyro::ConvexResult> result;
+
+  void add(std::size_t i, const gyro::ConvexShape& sa, const gyro::ConvexPose& qa, const gyro::ConvexShape& sb,
+           const gyro::ConvexPose& qb) {
+    const std::size_t k = index.size();
+    index.push_back(i);
+    const auto put = [&](int c, float v) { col[std::size_t(c) * kPairChunk + k] = v; };
+    const auto box = [&](int base, const gyro::ConvexShape& s, const gyro::ConvexPose& q) {
+      put(base + 0, q.position.x), put(base + 1, q.position.y), put(base + 2, q.position.z);
+      put(base + 3, s.half_extents.x), put(base + 4, s.half_extents.y), put(base + 5, s.half_extents.z);
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) put(base + 6 + 3 * r + c, q.rotation.m[r][c]);
+    };
+    box(0, sa, qa), box(15, sb, qb);
+  }
+
+  gyro::ConvexBoxPairs view() const {
+    gyro::ConvexBoxPairs p;
+    const auto at = [&](int c) { return col.data() + std::size_t(c) * kPairChunk; };
+    for (int k = 0; k < 3; ++k) p.a_center[k] = at(k), p.a_half[k] = at(3 + k), p.b_center[k] = at(15 + k), p.b_half[k] = at(18 + k);
+    for (int k = 0; k < 9; ++k) p.a_rot[k] = at(6 + k), p.b_rot[k] = at(21 + k);
+    return p;
+  }
+};
+
+// The pairs of chunk [begin, end): box-box pairs through the box-pair batches (GJK over SIMD
+// lanes, the scalar query's bits), the others one by one. A chunk whose columns cannot be
+// allocated runs every pair one by one (the same bits): nothing escapes the OpenMP thread.
+void run_chunk(const gyro_convex_shape* a, const gyro_convex_pose* pa, const gyro_convex_shape* b,
+               const gyro_convex_pose* pb, std::size_t begin, std::size_t end, gyro_convex_result* out, Query query) {
+  const gyro::ConvexQueryOptions options = options_of(query);
+  BoxColumns boxes;
+  bool lanes = true;
+  try {
+    boxes.col.resize(30 * kPairChunk), boxes.index.reserve(kPairChunk), boxes.result.resize(kPairChunk);
+  } catch (const std::bad_alloc&) {
+    lanes = false;
+  }
+  for (std::size_t i = begin; i < end; ++i) {
+    gyro::ConvexShape sa, sb;
+    gyro::ConvexPose qa, qb;
+    const char* which = nullptr;
+    if (pair_of(a[i], pa[i], b[i], pb[i], sa, qa, sb, qb, &which)) {
+      out[i] = invalid_result();
+    } else if (lanes && sa.type == gyro::ConvexType::box && sb.type == gyro::ConvexType::box) {
+      boxes.add(i, sa, qa, sb, qb);
+    } else {
+      out[i] = c_answer(query_pair(query, sa, qa, sb, qb, options));
+    }
+  }
+  const std::size_t n = boxes.index.size();
+  if (n == 0) return;
+  const gyro::ConvexBoxPairs view = boxes.view();
+  try {  // the batches allocate their lane state
+    switch (query) {
+      case Query::intersect: gyro::convex_intersect_batch(view, n, boxes.result.data(), options); break;
+      case Query::distance: gyro::convex_distance_batch(view, n, boxes.result.data(), options); break;
+      default: gyro::convex_penetration_batch(view, n, boxes.result.data(), options); break;
+    }
+  } catch (const std::bad_alloc&) {
+    for (std::size_t k = 0; k < n; ++k) {
+      const std::size_t i = boxes.index[k];
+      gyro::ConvexShape sa, sb;
+      gyro::ConvexPose qa, qb;
+      const char* which = nullptr;
+      pair_of(a[i], pa[i], b[i], pb[i], sa, qa, sb, qb, &which);  // answerable: checked above
+      boxes.result[k] = query_pair(query, sa, qa, sb, qb, options);
+    }
+  }
+  for (std::size_t k = 0; k < n; ++k) out[boxes.index[k]] = c_answer(boxes.result[k]);
+}
 
 gyro_status run_pairs(const gyro_convex_shape* a, const gyro_convex_pose* pa, const gyro_convex_shape* b,
                       const gyro_convex_pose* pb, int32_t count, gyro_convex_result* out, Query query) {
@@ -203,25 +303,8 @@ gyro_status run_pairs(const gyro_convex_shape* a, const gyro_convex_pose* pa, co
     GYRO_TRY(require(b, "b"));
     GYRO_TRY(require(pb, "pb"));
     GYRO_TRY(require(out, "out"));
-    const gyro::ConvexQueryOptions options;
-    // Nothing below allocates or throws: the chunks run on OpenMP threads.
     gyro::detail::parallel_for(std::size_t(count), kPairChunk, [&](std::size_t begin, std::size_t end) {
-      for (std::size_t i = begin; i < end; ++i) {
-        gyro::ConvexShape sa, sb;
-        gyro::ConvexPose qa, qb;
-        const char* which = nullptr;
-        if (pair_of(a[i], pa[i], b[i], pb[i], sa, qa, sb, qb, &which)) {
-          out[i] = invalid_result();
-          continue;
-        }
-        gyro::ConvexResult r;
-        switch (query) {
-          case Query::intersect: r = gyro::convex_intersect(sa, qa, sb, qb, options); break;
-          case Query::distance: r = gyro::convex_distance(sa, qa, sb, qb, options); break;
-          case Query::penetration: r = gyro::convex_penetration(sa, qa, sb, qb, options); break;
-        }
-        out[i] = r.status == gyro::ConvexStatus::invalid_input ? invalid_result() : c_result(r);
-      }
+      run_chunk(a, pa, b, pb, begin, end, out, query);
     });
     // The first invalid pair's reason, on the calling thread (in index order: deterministic).
     for (int32_t i = 0; i < count; ++i) {
@@ -378,6 +461,12 @@ GYRO_API gyro_status gyro_convex_penetration_pairs(const gyro_convex_shape* a, c
                                                    const gyro_convex_shape* b, const gyro_convex_pose* pb,
                                                    int32_t count, gyro_convex_result* out) {
   return run_pairs(a, pa, b, pb, count, out, Query::penetration);
+}
+
+GYRO_API gyro_status gyro_convex_contact_pairs(const gyro_convex_shape* a, const gyro_convex_pose* pa,
+                                               const gyro_convex_shape* b, const gyro_convex_pose* pb,
+                                               int32_t count, gyro_convex_result* out) {
+  return run_pairs(a, pa, b, pb, count, out, Query::contact);
 }
 
 }  // extern "C"

@@ -58,7 +58,7 @@ namespace Gyro.Native
     public static class Constants
     {
         /// <summary>The ABI this binding was written against: (major &lt;&lt; 16) | minor.</summary>
-        public const uint GYRO_ABI_VERSION = (1u << 16) | 5u;
+        public const uint GYRO_ABI_VERSION = (1u << 16) | 6u;
 
         public const uint GYRO_FEATURE_OPENMP = 1u << 0;
         public const uint GYRO_FEATURE_SIMD_SSE2 = 1u << 1;
@@ -1037,6 +1037,7 @@ namespace Gyro.Native
         [DllImport(Library, CallingConvention = Cdecl)] public static extern Status gyro_convex_intersect_pairs(ConvexShape* a, ConvexPose* pa, ConvexShape* b, ConvexPose* pb, int count, ConvexResult* @out);
         [DllImport(Library, CallingConvention = Cdecl)] public static extern Status gyro_convex_distance_pairs(ConvexShape* a, ConvexPose* pa, ConvexShape* b, ConvexPose* pb, int count, ConvexResult* @out);
         [DllImport(Library, CallingConvention = Cdecl)] public static extern Status gyro_convex_penetration_pairs(ConvexShape* a, ConvexPose* pa, ConvexShape* b, ConvexPose* pb, int count, ConvexResult* @out);
+        [DllImport(Library, CallingConvention = Cdecl)] public static extern Status gyro_convex_contact_pairs(ConvexShape* a, ConvexPose* pa, ConvexShape* b, ConvexPose* pb, int count, ConvexResult* @out);
 
         // snapshot and restore
         [DllImport(Library, CallingConvention = Cdecl)] public static extern Status gyro_world_snapshot_size(WorldHandle world, ulong* @out);

@@ -737,6 +737,12 @@ namespace Gyro
                                             ReadOnlySpan<ConvexPose> pb, Span<ConvexResult> results)
         { Pairs(2, a, pa, b, pb, results); }
 
+        /// <summary>Contact generation's query (ABI 1.6): PenetrationPairs' answer for overlapping
+        /// pairs; separated pairs stop at the first separating axis (Separated, distance an upper bound).</summary>
+        public static void ContactPairs(ReadOnlySpan<ConvexShape> a, ReadOnlySpan<ConvexPose> pa, ReadOnlySpan<ConvexShape> b,
+                                        ReadOnlySpan<ConvexPose> pb, Span<ConvexResult> results)
+        { Pairs(3, a, pa, b, pb, results); }
+
         static void Pairs(int which, ReadOnlySpan<ConvexShape> a, ReadOnlySpan<ConvexPose> pa, ReadOnlySpan<ConvexShape> b,
                           ReadOnlySpan<ConvexPose> pb, Span<ConvexResult> results)
         {
@@ -751,7 +757,8 @@ namespace Gyro
             {
                 if (which == 0) Check.Ok(N.gyro_convex_intersect_pairs(sa, qa, sb, qb, n, r), "gyro_convex_intersect_pairs");
                 else if (which == 1) Check.Ok(N.gyro_convex_distance_pairs(sa, qa, sb, qb, n, r), "gyro_convex_distance_pairs");
-                else Check.Ok(N.gyro_convex_penetration_pairs(sa, qa, sb, qb, n, r), "gyro_convex_penetration_pairs");
+                else if (which == 2) Check.Ok(N.gyro_convex_penetration_pairs(sa, qa, sb, qb, n, r), "gyro_convex_penetration_pairs");
+                else Check.Ok(N.gyro_convex_contact_pairs(sa, qa, sb, qb, n, r), "gyro_convex_contact_pairs");
             }
         }
     }

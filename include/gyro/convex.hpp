@@ -189,13 +189,17 @@ Status convex_hull_mass(const ConvexHull& hull, ConvexMass& out);
 
 // ---- box-pair batches: GJK over SIMD lanes (issue 8) ----
 //
-// convex_intersect_batch above and the two calls below run GJK itself over SIMD lanes, one
+// convex_intersect_batch above and the three calls below run GJK itself over SIMD lanes, one
 // box pair per lane through the whole iteration loop (each lane performs the scalar loop's
 // operations, so the lanes leave every pair with the scalar query's simplex, bit for bit);
 // the results are then formed, and EPA run where needed, with the scalar query's code.
 // out[i] is bit-identical to the scalar call on pair i at every SIMD level and thread count.
 // Invalid pairs get ConvexStatus::invalid_input (and gyro::last_error() a message).
 
+/// convex_intersect(box A_i, box B_i) for i in [0, count), the whole result (the distance,
+/// normal and witnesses at GJK's exit), written to out[i].
+void convex_intersect_batch(const ConvexBoxPairs& pairs, std::size_t count, ConvexResult* out,
+                            const ConvexQueryOptions& options = {});
 /// convex_distance(box A_i, box B_i) for i in [0, count), written to out[i].
 void convex_distance_batch(const ConvexBoxPairs& pairs, std::size_t count, ConvexResult* out,
                            const ConvexQueryOptions& options = {});

@@ -563,15 +563,16 @@ void load_pair(const ConvexBoxPairs& p, std::size_t i, const BoxGjkBlock& blk, s
 }
 
 // Runs the lane GJK over the pairs, block by block, and calls on_block(begin, end, block)
-// after each block.
+// after each block. verdict_only: the caller needs only the intersect verdict (the lanes
+// keep no witnesses and form no results).
 template <class OnBlock>
-void box_batch(const ConvexBoxPairs& p, std::size_t count, const ConvexQueryOptions& opt, Mode mode,
+void box_batch(const ConvexBoxPairs& p, std::size_t count, const ConvexQueryOptions& opt, Mode mode, bool verdict_only,
                OnBlock&& on_block) {
   const auto block = std::make_unique<BoxGjkBlock>();
   const auto work = std::make_unique<BoxGjkWork>();
   BoxGjkParams prm;
   prm.touch_tolerance = opt.touch_tolerance, prm.max_iterations = opt.max_gjk_iterations;
-  prm.boolean = stops_early(mode, opt), prm.verdict_only = mode == Mode::intersect;
+  prm.boolean = stops_early(mode, opt), prm.verdict_only = verdict_only;
   prm.penetration = mode == Mode::penetration;
   box_gjk_fn* const kernel = GYRO_DISPATCH(box_gjk);
   for (std::size_t base = 0; base < count; base += BoxGjkBlock::kMax) {
@@ -622,7 +623,7 @@ void box_result_batch(const ConvexBoxPairs& p, std::size_t count, ConvexResult* 
     for (std::size_t i = 0; i < count; ++i) load_pair_scalar(p, i, q), out[i] = query(q.a, q.pa, q.b, q.pb, opt, mode);
     return;
   }
-  box_batch(p, count, opt, mode, [&](std::size_t base, std::size_t end, const BoxGjkBlock& blk) {
+  box_batch(p, count, opt, mode, false, [&](std::size_t base, std::size_t end, const BoxGjkBlock& blk) {
     for (std::size_t i = base; i < end; ++i) {
       const std::size_t k = i - base;
       if (blk.code[k] == BoxGjkBlock::kDone && blk.done[k] == 1.0f) {
@@ -743,7 +744,8 @@ void convex_intersect_batch(const ConvexBoxPairs& p, std::size_t count, ConvexSt
     for (std::size_t i = 0; i < count; ++i) detail::load_pair_scalar(p, i, q), out[i] = detail::box_intersect_scalar(q, opt);
     return;
   }
-  detail::box_batch(p, count, opt, detail::Mode::intersect, [&](std::size_t base, std::size_t end, const BoxGjkBlock& blk) {
+  detail::box_batch(p, count, opt, detail::Mode::intersect, true,
+                    [&](std::size_t base, std::size_t end, const BoxGjkBlock& blk) {
     for (std::size_t i = base; i < end; ++i) {
       const std::size_t k = i - base;
       const uint32_t fl = blk.flags[k];
@@ -769,6 +771,11 @@ void convex_intersect_batch(const ConvexBoxPairs& p, std::size_t count, ConvexSt
       out[i] = q.scalar ? convex_intersect(q.a, q.pa, q.b, q.pb, opt).status : detail::box_intersect_status(q.f, q.g, opt);
     }
   });
+}
+
+void convex_intersect_batch(const ConvexBoxPairs& p, std::size_t count, ConvexResult* out,
+                            const ConvexQueryOptions& opt) {
+  detail::box_result_batch(p, count, out, opt, detail::Mode::intersect);
 }
 
 void convex_distance_batch(const ConvexBoxPairs& p, std::size_t count, ConvexResult* out,

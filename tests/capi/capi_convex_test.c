@@ -327,7 +327,7 @@ static void test_known_answers(void) {
   gyro_convex_hull* cube = cube_hull();
   gyro_convex_shape a[KNOWN], b[KNOWN];
   gyro_convex_pose pa[KNOWN], pb[KNOWN];
-  gyro_convex_result dist[KNOWN], pen[KNOWN], hit[KNOWN];
+  gyro_convex_result dist[KNOWN], pen[KNOWN], hit[KNOWN], contact[KNOWN];
   int i;
   if (!cube) return;
   for (i = 0; i < KNOWN; ++i) pa[i] = pose_at(0.0f, 0.0f, 0.0f);
@@ -358,6 +358,16 @@ static void test_known_answers(void) {
   CHECK(gyro_convex_distance_pairs(a, pa, b, pb, KNOWN, dist) == GYRO_OK);
   CHECK(gyro_convex_penetration_pairs(a, pa, b, pb, KNOWN, pen) == GYRO_OK);
   CHECK(gyro_convex_intersect_pairs(a, pa, b, pb, KNOWN, hit) == GYRO_OK);
+  CHECK(gyro_convex_contact_pairs(a, pa, b, pb, KNOWN, contact) == GYRO_OK);
+  /* contact (ABI 1.6): overlapping pairs get the penetration answer bit for bit, separated
+     pairs stay separated with a distance no smaller than the gap */
+  for (i = 0; i < KNOWN; ++i) {
+    if (pen[i].status == GYRO_CONVEX_SEPARATED) {
+      CHECK(contact[i].status == GYRO_CONVEX_SEPARATED && contact[i].distance >= pen[i].distance);
+    } else {
+      CHECK(memcmp(&contact[i], &pen[i], sizeof pen[i]) == 0);
+    }
+  }
 
   CHECK(dist[0].status == GYRO_CONVEX_SEPARATED && near(dist[0].distance, 1.0f, 1e-5f));
   CHECK(near3(dist[0].normal, 1.0f, 0.0f, 0.0f, 1e-5f));
@@ -432,6 +442,9 @@ static void test_invalid_pairs(void) {
   CHECK(gyro_convex_intersect_pairs(a, pa, b, pb, BAD, out) == GYRO_OK);
   for (i = 1; i < BAD; ++i) CHECK(out[i].status == GYRO_CONVEX_INVALID_INPUT);
   CHECK(out[0].status == GYRO_CONVEX_SEPARATED);
+  CHECK(gyro_convex_contact_pairs(a, pa, b, pb, BAD, out) == GYRO_OK);
+  for (i = 1; i < BAD; ++i) CHECK(out[i].status == GYRO_CONVEX_INVALID_INPUT);
+  CHECK(out[0].status == GYRO_CONVEX_SEPARATED);
 
   /* whole-call failures: nothing written */
   memset(out, 0xAB, sizeof out);
@@ -443,13 +456,16 @@ static void test_invalid_pairs(void) {
   CHECK(gyro_convex_intersect_pairs(a, pa, b, pb, BAD, NULL) == GYRO_STATUS_NULL_ARGUMENT);
   CHECK(gyro_convex_intersect_pairs(a, pa, b, pb, -1, out) == GYRO_STATUS_INVALID_COUNT);
   CHECK(gyro_convex_distance_pairs(a, pa, b, pb, -5, out) == GYRO_STATUS_INVALID_COUNT);
+  CHECK(gyro_convex_contact_pairs(a, pa, b, NULL, BAD, out) == GYRO_STATUS_NULL_ARGUMENT);
+  CHECK(gyro_convex_contact_pairs(a, pa, b, pb, -2, out) == GYRO_STATUS_INVALID_COUNT);
   CHECK(memcmp(out, before, sizeof out) == 0);
   /* an empty batch needs no arrays */
   CHECK(gyro_convex_distance_pairs(NULL, NULL, NULL, NULL, 0, NULL) == GYRO_OK);
   gyro_convex_hull_destroy(cube);
 }
 
-/* A seeded batch of mixed pairs: the same bits at 1 and 4 threads (and at the scalar level). */
+/* A seeded batch of mixed pairs, a third of them box-box (those run over SIMD lanes): every
+   query gives the same bits at 1 and 4 threads and at the scalar level (pair by pair). */
 #define MANY 2000
 static uint32_t rng = 12345u;
 static float rnd(float lo, float hi) {
@@ -472,6 +488,8 @@ static gyro_convex_pose random_pose(void) {
   CHECK(gyro_convex_pose_from_quat(vec3(rnd(-2.0f, 2.0f), rnd(-2.0f, 2.0f), rnd(-2.0f, 2.0f)), q, &p) == GYRO_OK);
   return p;
 }
+typedef gyro_status (*pairs_fn)(const gyro_convex_shape*, const gyro_convex_pose*, const gyro_convex_shape*,
+                                const gyro_convex_pose*, int32_t, gyro_convex_result*);
 static void test_thread_invariance(void) {
   gyro_convex_hull* cube = cube_hull();
   gyro_convex_shape* a = malloc(MANY * sizeof *a);
@@ -485,20 +503,30 @@ static void test_thread_invariance(void) {
   if (!cube || !a || !b || !pa || !pb || !r1 || !r4 || !rs) {
     CHECK(0);
   } else {
+    pairs_fn queries[4] = {gyro_convex_intersect_pairs, gyro_convex_distance_pairs, gyro_convex_penetration_pairs,
+                           gyro_convex_contact_pairs};
+    const int order[4] = {0, 1, 3, 2}; /* penetration last: its results are checked below */
+    int q;
     for (i = 0; i < MANY; ++i) {
       a[i] = random_shape(cube), b[i] = random_shape(cube);
+      if (i % 3 == 0) a[i] = box(rnd(0.1f, 1.0f), rnd(0.1f, 1.0f), rnd(0.1f, 1.0f)), b[i] = box(rnd(0.1f, 1.0f), 0.5f, 1.0f);
       pa[i] = random_pose(), pb[i] = random_pose();
     }
     pb[MANY / 2].position.x = NAN; /* one bad pair in the middle of a chunk */
-    CHECK(gyro_set_thread_count(1) == GYRO_OK);
-    CHECK(gyro_convex_penetration_pairs(a, pa, b, pb, MANY, r1) == GYRO_OK);
-    CHECK(gyro_set_thread_count(4) == GYRO_OK);
-    CHECK(gyro_convex_penetration_pairs(a, pa, b, pb, MANY, r4) == GYRO_OK);
-    CHECK(memcmp(r1, r4, MANY * sizeof *r1) == 0);
-    CHECK(gyro_set_simd_level(GYRO_SIMD_SCALAR) == GYRO_OK);
-    CHECK(gyro_convex_penetration_pairs(a, pa, b, pb, MANY, rs) == GYRO_OK);
-    CHECK(memcmp(r1, rs, MANY * sizeof *r1) == 0);
-    CHECK(gyro_set_simd_level(GYRO_SIMD_AUTO) == GYRO_OK);
+    pb[MANY / 2 + 3].position.y = NAN; /* and a bad box-box pair */
+    for (q = 0; q < 4; ++q) {
+      pairs_fn f = queries[order[q]];
+      CHECK(gyro_set_thread_count(1) == GYRO_OK);
+      CHECK(f(a, pa, b, pb, MANY, r1) == GYRO_OK);
+      CHECK(gyro_set_thread_count(4) == GYRO_OK);
+      CHECK(f(a, pa, b, pb, MANY, r4) == GYRO_OK);
+      CHECK(memcmp(r1, r4, MANY * sizeof *r1) == 0);
+      CHECK(gyro_set_simd_level(GYRO_SIMD_SCALAR) == GYRO_OK);
+      CHECK(f(a, pa, b, pb, MANY, rs) == GYRO_OK);
+      CHECK(memcmp(r1, rs, MANY * sizeof *r1) == 0);
+      CHECK(gyro_set_simd_level(GYRO_SIMD_AUTO) == GYRO_OK);
+      CHECK(r1[MANY / 2].status == GYRO_CONVEX_INVALID_INPUT && r1[MANY / 2 + 3].status == GYRO_CONVEX_INVALID_INPUT);
+    }
     CHECK(gyro_set_thread_count(0) == GYRO_OK);
     CHECK(r1[MANY / 2].status == GYRO_CONVEX_INVALID_INPUT);
     for (i = 0; i < MANY; ++i) {

@@ -26,7 +26,7 @@
 // parser, not only the checksum, sees them), and valid snapshots and recordings of fuzzed
 // worlds are mutated a few bytes at a time before they are restored or replayed.
 //
-// Reproduce a finding: build-fuzz/tests/fuzz/gyro-fuzz-capi CRASH_FILE (GYRO_FUZZ_TRACE=1
+// Reproduce a finding: build-asan/tests/fuzz/gyro-fuzz-capi CRASH_FILE (GYRO_FUZZ_TRACE=1
 // prints every call).
 #include "gyro.h"
 
@@ -1243,7 +1243,7 @@ void op_convex_pairs(State& st) {
   const int32_t n = in.count(kPairs);
   const int live = n > 0 ? n : 0;
   for (int i = 0; i < live; ++i) a[i] = convex_shape(st), pa[i] = convex_pose(st), b[i] = convex_shape(st), pb[i] = convex_pose(st);
-  const uint8_t kind = in.u8() % 3, np = in.u8() % 12;
+  const uint8_t kind = in.u8() % 4, np = in.u8() % 12;
   gyro_convex_result out[kPairs];
   Guard<gyro_convex_result[kPairs]> g(out);
   const gyro_convex_shape* A = np == 1 ? nullptr : a;
@@ -1251,11 +1251,14 @@ void op_convex_pairs(State& st) {
   const gyro_convex_shape* B = np == 3 ? nullptr : b;
   const gyro_convex_pose* PB = np == 4 ? nullptr : pb;
   gyro_convex_result* O = np == 5 ? nullptr : out;
-  const char* name = kind == 0 ? "gyro_convex_intersect_pairs" : kind == 1 ? "gyro_convex_distance_pairs"
-                                                                            : "gyro_convex_penetration_pairs";
+  const char* name = kind == 0   ? "gyro_convex_intersect_pairs"
+                     : kind == 1 ? "gyro_convex_distance_pairs"
+                     : kind == 2 ? "gyro_convex_penetration_pairs"
+                                 : "gyro_convex_contact_pairs";
   const gyro_status s = checked(kind == 0   ? gyro_convex_intersect_pairs(A, PA, B, PB, n, O)
                                 : kind == 1 ? gyro_convex_distance_pairs(A, PA, B, PB, n, O)
-                                            : gyro_convex_penetration_pairs(A, PA, B, PB, n, O),
+                                : kind == 2 ? gyro_convex_penetration_pairs(A, PA, B, PB, n, O)
+                                            : gyro_convex_contact_pairs(A, PA, B, PB, n, O),
                                 name);
   g.untouched_unless(s, name);
   if (s != GYRO_OK) return;

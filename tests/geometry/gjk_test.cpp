@@ -517,11 +517,12 @@ TEST(GjkBatch, BoxPairsMatchScalarIntersectAtEveryLevel) {
   }
 }
 
-// convex_distance_batch and convex_penetration_batch: every output bit of the scalar query,
-// at every level, with the default options, with a GJK iteration limit that some pairs
-// reach (the lanes then form an iteration_limit result), and for penetration with
-// separated_distance off (separated pairs stop at a separating axis).
-TEST(GjkBatch, DistanceAndPenetrationMatchScalarAtEveryLevel) {
+// The whole-result batches (convex_intersect_batch's ConvexResult form, convex_distance_batch
+// and convex_penetration_batch): every output bit of the scalar query, at every level, with
+// the default options, with a GJK iteration limit that some pairs reach (the lanes then form
+// an iteration_limit result), and with separated_distance off (penetration's separated pairs
+// stop at a separating axis).
+TEST(GjkBatch, IntersectDistanceAndPenetrationMatchScalarAtEveryLevel) {
   const testing::BoxPairs p = batch_pairs();
   const std::size_t n = p.a.cx.size();
   const ConvexBoxPairs pairs = soa_view(p);
@@ -530,13 +531,14 @@ TEST(GjkBatch, DistanceAndPenetrationMatchScalarAtEveryLevel) {
   early_opt.separated_distance = false;
   early_short_opt.separated_distance = false, early_short_opt.max_gjk_iterations = 2;
   for (const ConvexQueryOptions& opt : {ConvexQueryOptions{}, short_opt, early_opt, early_short_opt}) {
-    for (bool penetration : {false, true}) {
+    for (int mode = 0; mode < 3; ++mode) {  // intersect, distance, penetration
       std::vector<ConvexResult> ref(n);
       std::size_t limits = 0, separated = 0, overlapping_pairs = 0;
       for (std::size_t i = 0; i < n; ++i) {
         const ConvexShape a = raw_box(p.a, i), b = raw_box(p.b, i);
-        ref[i] = penetration ? convex_penetration(a, pose_of(p.a, i), b, pose_of(p.b, i), opt)
-                             : convex_distance(a, pose_of(p.a, i), b, pose_of(p.b, i), opt);
+        ref[i] = mode == 0 ? convex_intersect(a, pose_of(p.a, i), b, pose_of(p.b, i), opt)
+                 : mode == 1 ? convex_distance(a, pose_of(p.a, i), b, pose_of(p.b, i), opt)
+                             : convex_penetration(a, pose_of(p.a, i), b, pose_of(p.b, i), opt);
         limits += ref[i].status == ConvexStatus::iteration_limit;
         separated += ref[i].status == ConvexStatus::separated;
         overlapping_pairs += overlapping(ref[i].status);
@@ -548,11 +550,12 @@ TEST(GjkBatch, DistanceAndPenetrationMatchScalarAtEveryLevel) {
         if (!simd_level_available(level)) continue;
         set_simd_level(level);
         std::vector<ConvexResult> out(n);
-        if (penetration) convex_penetration_batch(pairs, n, out.data(), opt);
-        else convex_distance_batch(pairs, n, out.data(), opt);
+        if (mode == 0) convex_intersect_batch(pairs, n, out.data(), opt);
+        else if (mode == 1) convex_distance_batch(pairs, n, out.data(), opt);
+        else convex_penetration_batch(pairs, n, out.data(), opt);
         std::size_t differ = 0;
         for (std::size_t i = 0; i < n; ++i) differ += std::memcmp(&out[i], &ref[i], sizeof(ConvexResult)) != 0;
-        EXPECT_EQ(differ, 0u) << simd_level_name(level) << (penetration ? " penetration" : " distance")
+        EXPECT_EQ(differ, 0u) << simd_level_name(level) << " mode " << mode
                               << " max_gjk_iterations " << opt.max_gjk_iterations << " separated_distance "
                               << opt.separated_distance;
       }

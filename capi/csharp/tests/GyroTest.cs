@@ -471,6 +471,10 @@ namespace Gyro.Tests
                 Convex.PenetrationPairs(a, pa, b, pb, r);
                 Ok(r[2].Status == ConvexStatus.Intersecting, "boxes 1.5 apart intersect: " + r[2].Status);
                 Near(r[2].Distance, -0.5, 1e-4, "penetration depth 0.5 (distance = -depth)");
+                ConvexResult[] pen = (ConvexResult[])r.Clone();
+                Convex.ContactPairs(a, pa, b, pb, r);
+                Ok(r[0].Status == ConvexStatus.Separated && r[1].Status == ConvexStatus.Separated, "contact: separated pairs stay separated");
+                Ok(r[2].Equals(pen[2]), "contact: an overlapping pair gets the penetration answer bit for bit");
                 Convex.IntersectPairs(a, pa, b, pb, r);
                 Ok(r[0].Status == ConvexStatus.Separated && r[2].Status != ConvexStatus.Separated, "intersect verdicts");
                 ConvexPose turned = Convex.PoseFromQuat(new Vec3(1, 2, 3), Quat.Identity);

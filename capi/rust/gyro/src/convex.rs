@@ -195,3 +195,10 @@ pub fn convex_distance_pairs(a: &[ConvexShape], pa: &[ConvexPose], b: &[ConvexSh
 pub fn convex_penetration_pairs(a: &[ConvexShape], pa: &[ConvexPose], b: &[ConvexShape], pb: &[ConvexPose], out: &mut [ConvexResult]) -> Result<()> {
     pairs(sys::gyro_convex_penetration_pairs, a, pa, b, pb, out)
 }
+
+/// Contact generation's query (ABI 1.6): convex_penetration_pairs' answer for overlapping
+/// pairs; separated pairs stop at the first separating axis (GYRO_CONVEX_SEPARATED, the
+/// distance an upper bound of the gap).
+pub fn convex_contact_pairs(a: &[ConvexShape], pa: &[ConvexPose], b: &[ConvexShape], pb: &[ConvexPose], out: &mut [ConvexResult]) -> Result<()> {
+    pairs(sys::gyro_convex_contact_pairs, a, pa, b, pb, out)
+}

@@ -21,7 +21,7 @@ mod soft;
 mod world;
 
 pub use convex::{
-    convex_distance_pairs, convex_intersect_pairs, convex_penetration_pairs, convex_pose, convex_pose_at, ConvexEdge, ConvexHull, ConvexHullInfo,
+    convex_contact_pairs, convex_distance_pairs, convex_intersect_pairs, convex_penetration_pairs, convex_pose, convex_pose_at, ConvexEdge, ConvexHull, ConvexHullInfo,
     ConvexMass, ConvexPlane, ConvexPose, ConvexResult, ConvexShape,
 };
 pub use mesh::{raycast_spheres_closest, Hits, Mesh, MeshInfo, Rays, Spheres};

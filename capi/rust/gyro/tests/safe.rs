@@ -263,6 +263,15 @@ fn convex_pair_queries_over_slices() {
     assert!(close(out[1].distance, -0.5, 1e-5) && close(out[1].normal.x, 1.0, 1e-5), "{:?}", out[1].normal);
     assert!(close(out[2].distance, 0.5, 1e-5));
 
+    // contact (ABI 1.6): the overlapping pair's penetration bits, the separated pairs separated
+    let mut contact: [ConvexResult; 3] = unsafe { core::mem::zeroed() };
+    convex_contact_pairs(&a, &pa, &b, &pb, &mut contact).unwrap();
+    assert_eq!(contact[0].status, sys::GYRO_CONVEX_SEPARATED);
+    assert_eq!(contact[2].status, sys::GYRO_CONVEX_SEPARATED);
+    assert_eq!(contact[1].distance.to_bits(), out[1].distance.to_bits());
+    assert_eq!(contact[1].normal.x.to_bits(), out[1].normal.x.to_bits());
+    assert!(contact[0].distance >= out[0].distance && contact[2].distance >= out[2].distance);
+
     let mut hits: [ConvexResult; 3] = unsafe { core::mem::zeroed() };
     convex_intersect_pairs(&a, &pa, &b, &pb, &mut hits).unwrap();
     assert_eq!(hits[0].status, sys::GYRO_CONVEX_SEPARATED);
