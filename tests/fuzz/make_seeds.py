@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Writes the seed corpus of gyro-fuzz-capi (tests/fuzz/corpus/): one small program per
 family of operations, in the byte format fuzz_capi.cpp reads. Run it after changing that
-format; check a seed with GYRO_FUZZ_TRACE=1 build-fuzz/tests/fuzz/gyro-fuzz-capi SEED."""
+format; check a seed with GYRO_FUZZ_TRACE=1 build-asan/tests/fuzz/gyro-fuzz-capi SEED."""
 import os
 import sys
 
