@@ -148,7 +148,7 @@ template <bool AnyHit, bool Turns> inline bool step(const Bvh8& bvh, Walk& w) {
       store(nears, tn);
       const int k0 = __builtin_ctz(mask);
       w.next = {node.child[k0], nears[k0]};
-      // The same ordering as scene_kernels.cpp's step(), kept apart on purpose (its header).
+      // The same ordering as scene_kernels.cpp's enter_node(), kept apart on purpose (its header).
       const unsigned rest = mask & (mask - 1);
       if (rest != 0 && (rest & (rest - 1)) == 0) {
         // Two (the commonest several): the nearer next, the other pushed; a tie keeps the

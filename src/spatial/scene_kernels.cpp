@@ -15,9 +15,9 @@
 // The single walk mirrors bvh_kernels.cpp's instead of sharing helpers with it: factored
 // out, the mesh kernel ran 7 to 11% more instructions (callgrind, R2); even the child
 // ordering alone (one inline function for both, same results) cost R1 8.6% (27.9 M ->
-// 30.3 M instructions on 20k rays, AVX2), so step()'s ordering block is written twice. Rays from one origin
-// (closest hit) walk in packets of eight through the walk both kernels share
-// (packet_walk.hpp; sharing it cost the LIDAR packets 2% more instructions).
+// 30.3 M instructions on 20k rays, AVX2), so enter_node()'s ordering block is written
+// twice. Rays from one origin (closest hit) walk in packets of eight through the walk both
+// kernels share (packet_walk.hpp; sharing it cost the LIDAR packets 2% more instructions).
 // Any hit: a leaf's items are tried in lane order and the walk stops at the first hit, the
 // order the scalar walk tries them in.
 #include "geometry/ray_lanes.hpp"
@@ -161,57 +161,80 @@ template <bool AnyHit> inline bool visit_leaf(const SceneRaycastArgs& a, Walk& w
   return false;
 }
 
+// Tests a node's child boxes, pushes the entered ones but the nearest onto w.stack[sp..] and
+// makes that one `next`; true when it lies within the limit (the walk goes on with it).
+template <bool Turns>
+inline bool enter_node(const SceneRaycastArgs& a, Walk& w, const BvhNode8& node, Entry& next, int& sp) {
+  Oct tn = w.tmin8, tf = Oct(w.limit);
+  for (int k = 0; k < 3; ++k) {  // the scalar walk's order: x, y, z, each slab value first
+    const Oct t0 = (load<Oct>(node.bounds[w.near_row[k]]) - w.o_near[k]) * w.inv[k];
+    const Oct t1 = (load<Oct>(node.bounds[w.far_row[k]]) - w.o_far[k]) * w.inv[k];
+    tn = max(t0, tn);  // t0 > tn ? t0 : tn (lanes.hpp), one instruction on x86
+    tf = min(t1, tf);
+  }
+  // An empty slot's (+inf, -inf) box gives tn = +inf for any valid ray, so it never passes.
+  const unsigned mask = lane_bits((tn <= tf + abs(tf) * Oct(kSlabSlack)) && (tn < Oct(kInf)));
+  if (mask == 0) return false;
+  float nears[8];
+  store(nears, tn);
+  const int k0 = __builtin_ctz(mask);
+  next = {node.child[k0], nears[k0]};
+  const unsigned rest = mask & (mask - 1);
+  if (rest != 0 && (rest & (rest - 1)) == 0) {
+    // Two (the commonest several): the nearer next, the other pushed; a tie keeps the slot
+    // order, as the sort below would.
+    const int k1 = __builtin_ctz(rest);
+    const Entry e0{node.child[k0], nears[k0]}, e1{node.child[k1], nears[k1]};
+    const bool swap = nears[k1] < nears[k0];
+    w.stack[sp++] = swap ? e0 : e1;
+    next = swap ? e1 : e0;
+  } else if (rest != 0) {
+    // Several: the nearest next, the others pushed farthest first (ties keep the slot
+    // order, so the order is a function of the values only).
+    Entry hit[8];
+    int n = 0;
+    for (unsigned m = mask; m != 0; m &= m - 1) {
+      const int k = __builtin_ctz(m);
+      int j = n++;
+      while (j > 0 && hit[j - 1].near > nears[k]) hit[j] = hit[j - 1], --j;
+      hit[j] = {node.child[k], nears[k]};
+    }
+    for (int j = n - 1; j > 0; --j) w.stack[sp++] = hit[j];
+    next = hit[0];
+  }
+  if (!(next.near <= w.limit)) return false;
+  prefetch<Turns>(a, next.code);
+  return true;
+}
+
 // Visits w.next and picks the one after it; false when the walk is over.
 template <bool AnyHit, bool Turns> inline bool step(const SceneRaycastArgs& a, Walk& w) {
   const Entry e = w.next;
   if (e.code & kLeafBit) {
     if (visit_leaf<AnyHit>(a, w, a.leaves[e.code & ~kLeafBit])) return false;
-  } else {
-    const BvhNode8& node = a.nodes[e.code];
-    Oct tn = w.tmin8, tf = Oct(w.limit);
-    for (int k = 0; k < 3; ++k) {  // the scalar walk's order: x, y, z, each slab value first
-      const Oct t0 = (load<Oct>(node.bounds[w.near_row[k]]) - w.o_near[k]) * w.inv[k];
-      const Oct t1 = (load<Oct>(node.bounds[w.far_row[k]]) - w.o_far[k]) * w.inv[k];
-      tn = max(t0, tn);  // t0 > tn ? t0 : tn (lanes.hpp), one instruction on x86
-      tf = min(t1, tf);
-    }
-    // An empty slot's (+inf, -inf) box gives tn = +inf for any valid ray, so it never passes.
-    const unsigned mask = lane_bits((tn <= tf + abs(tf) * Oct(kSlabSlack)) && (tn < Oct(kInf)));
-    if (mask != 0) {
-      float nears[8];
-      store(nears, tn);
-      const int k0 = __builtin_ctz(mask);
-      w.next = {node.child[k0], nears[k0]};
-      const unsigned rest = mask & (mask - 1);
-      if (rest != 0 && (rest & (rest - 1)) == 0) {
-        // Two (the commonest several): the nearer next, the other pushed; a tie keeps the
-        // slot order, as the sort below would.
-        const int k1 = __builtin_ctz(rest);
-        const Entry e0{node.child[k0], nears[k0]}, e1{node.child[k1], nears[k1]};
-        const bool swap = nears[k1] < nears[k0];
-        w.stack[w.sp++] = swap ? e0 : e1;
-        w.next = swap ? e1 : e0;
-      } else if (rest != 0) {
-        // Several: the nearest next, the others pushed farthest first (ties keep the slot
-        // order, so the order is a function of the values only).
-        Entry hit[8];
-        int n = 0;
-        for (unsigned m = mask; m != 0; m &= m - 1) {
-          const int k = __builtin_ctz(m);
-          int j = n++;
-          while (j > 0 && hit[j - 1].near > nears[k]) hit[j] = hit[j - 1], --j;
-          hit[j] = {node.child[k], nears[k]};
-        }
-        for (int j = n - 1; j > 0; --j) w.stack[w.sp++] = hit[j];
-        w.next = hit[0];
-      }
-      if (w.next.near <= w.limit) {
-        prefetch<Turns>(a, w.next.code);
-        return true;
-      }
-    }
+  } else if (enter_node<Turns>(a, w, a.nodes[e.code], w.next, w.sp)) {
+    return true;
   }
   return next_entry<Turns>(a, w);
+}
+
+// One ray at a time: step()'s walk with the cursor (the next entry, the stack depth) in
+// locals, which stay in registers; as Walk's fields they went through memory, and the
+// store-to-load forwarding sat on every visit's chain of dependent instructions.
+template <bool AnyHit> inline void walk_alone(const SceneRaycastArgs& a, Walk& w) {
+  Entry e = w.next;
+  int sp = 0;
+  for (;;) {
+    if (e.code & kLeafBit) {
+      if (visit_leaf<AnyHit>(a, w, a.leaves[e.code & ~kLeafBit])) return;
+    } else if (enter_node<false>(a, w, a.nodes[e.code], e, sp)) {
+      continue;
+    }
+    do {  // next_entry()'s pops
+      if (sp == 0) return;
+      e = w.stack[--sp];
+    } while (e.near > w.limit);
+  }
 }
 
 // Rays from one origin (a camera, a lidar) walk nearly the same nodes one after another:
@@ -244,8 +267,7 @@ template <bool AnyHit, bool Turns> void run(const SceneRaycastArgs& a, std::size
   };
   if constexpr (!Turns) {  // one ray at a time: no bookkeeping of turns
     while (refill(walks[0])) {
-      while (step<AnyHit, Turns>(a, walks[0])) {
-      }
+      walk_alone<AnyHit>(a, walks[0]);
       finish(walks[0]);
     }
     return;
@@ -358,9 +380,7 @@ void run_packets(const SceneRaycastArgs& a, std::size_t begin, std::size_t end) 
     if (start_packet(a, W, n, P)) {
       walk_packet(a, W, (1u << n) - 1u, P);
     } else {
-      for (int r = 0; r < n; ++r)
-        while (step<false, false>(a, W[r])) {
-        }
+      for (int r = 0; r < n; ++r) walk_alone<false>(a, W[r]);
     }
     for (int r = 0; r < n; ++r) {
       a.best_t[W[r].ray] = W[r].best_t;
