@@ -23,7 +23,6 @@
 #include <memory>
 #include <new>
 #include <type_traits>
-#include <vector>
 
 namespace {
 
@@ -97,7 +96,12 @@ Status copy_out(T* out, int32_t capacity, int32_t* count, std::size_t n, const c
 
 float dot3(const gyro_vec3& a, const gyro_vec3& b) { return (a.x * b.x + a.y * b.y) + a.z * b.z; }
 
-bool finite3(const gyro_vec3& v) { return is_finite(v.x) && is_finite(v.y) && is_finite(v.z); }
+// The per-pair checks below run once per pair before a query of a few hundred nanoseconds:
+// they combine their tests with & (no branch per test) and test finiteness bitwise.
+// (0 or 1 as unsigned: & of function results, which clang would warn of for bool.)
+unsigned finite_bits(float v) { return unsigned(is_finite(v)); }
+unsigned finite3(const gyro_vec3& v) { return finite_bits(v.x) & finite_bits(v.y) & finite_bits(v.z); }
+unsigned within(float x, float lo, float hi) { return unsigned(x >= lo) & unsigned(x <= hi); }
 
 /// Why a shape cannot be answered (nullptr: it can), and the C++ shape when it can.
 const char* shape_of(const gyro_convex_shape& c, gyro::ConvexShape& out) {
@@ -128,13 +132,13 @@ const char* shape_of(const gyro_convex_shape& c, gyro::ConvexShape& out) {
       s = c.hull->hull.shape();
       break;
   }
-  const bool finite = is_finite(s.radius) && is_finite(s.half_height) && is_finite(s.half_extents.x) &&
-                      is_finite(s.half_extents.y) && is_finite(s.half_extents.z) && is_finite(s.v[0].x) &&
-                      is_finite(s.v[0].y) && is_finite(s.v[0].z) && is_finite(s.v[1].x) && is_finite(s.v[1].y) &&
-                      is_finite(s.v[1].z) && is_finite(s.v[2].x) && is_finite(s.v[2].y) && is_finite(s.v[2].z);
+  const unsigned finite = finite_bits(s.radius) & finite_bits(s.half_height) & finite_bits(s.half_extents.x) &
+                      finite_bits(s.half_extents.y) & finite_bits(s.half_extents.z) & finite_bits(s.v[0].x) &
+                      finite_bits(s.v[0].y) & finite_bits(s.v[0].z) & finite_bits(s.v[1].x) & finite_bits(s.v[1].y) &
+                      finite_bits(s.v[1].z) & finite_bits(s.v[2].x) & finite_bits(s.v[2].y) & finite_bits(s.v[2].z);
   if (!finite) return "a size or corner is NaN or infinite";
-  if (s.radius < 0.0f || s.half_height < 0.0f || s.half_extents.x < 0.0f || s.half_extents.y < 0.0f ||
-      s.half_extents.z < 0.0f)
+  if ((s.radius < 0.0f) | (s.half_height < 0.0f) | (s.half_extents.x < 0.0f) | (s.half_extents.y < 0.0f) |
+      (s.half_extents.z < 0.0f))
     return "a size is negative";
   out = s;
   return nullptr;
@@ -142,18 +146,17 @@ const char* shape_of(const gyro_convex_shape& c, gyro::ConvexShape& out) {
 
 /// Why a pose cannot be used (nullptr: it can), and the C++ pose when it can.
 const char* pose_of(const gyro_convex_pose& c, gyro::ConvexPose& out) {
-  if (!finite3(c.position) || !finite3(c.rotation[0]) || !finite3(c.rotation[1]) || !finite3(c.rotation[2]))
+  if (!(finite3(c.position) & finite3(c.rotation[0]) & finite3(c.rotation[1]) & finite3(c.rotation[2])))
     return "the pose has a NaN or infinite value";
   const gyro_vec3 &r0 = c.rotation[0], &r1 = c.rotation[1], &r2 = c.rotation[2];
   const float t = kRotationTolerance;
   const float n0 = dot3(r0, r0) - 1.0f, n1 = dot3(r1, r1) - 1.0f, n2 = dot3(r2, r2) - 1.0f;
   const float o01 = dot3(r0, r1), o02 = dot3(r0, r2), o12 = dot3(r1, r2);
-  const bool unit = n0 <= 2.0f * t && n0 >= -2.0f * t && n1 <= 2.0f * t && n1 >= -2.0f * t && n2 <= 2.0f * t &&
-                    n2 >= -2.0f * t;
-  const bool orthogonal = o01 <= t && o01 >= -t && o02 <= t && o02 >= -t && o12 <= t && o12 >= -t;
+  const unsigned unit = within(n0, -2.0f * t, 2.0f * t) & within(n1, -2.0f * t, 2.0f * t) & within(n2, -2.0f * t, 2.0f * t);
+  const unsigned orthogonal = within(o01, -t, t) & within(o02, -t, t) & within(o12, -t, t);
   // det = r0 . (r1 x r2): +1 for a rotation, -1 for a reflection.
   const gyro_vec3 cross{r1.y * r2.z - r1.z * r2.y, r1.z * r2.x - r1.x * r2.z, r1.x * r2.y - r1.y * r2.x};
-  if (!unit || !orthogonal || !(dot3(r0, cross) > 0.0f))
+  if (!(unit & orthogonal & unsigned(dot3(r0, cross) > 0.0f)))
     return "the pose's rotation rows are not orthonormal and right-handed";
   gyro::ConvexPose p;
   p.position = v3(c.position);
@@ -217,68 +220,62 @@ gyro_convex_result c_answer(const gyro::ConvexResult& r) {
   return r.status == gyro::ConvexStatus::invalid_input ? invalid_result() : c_result(r);
 }
 
-/// A chunk's box-box pairs in the column form of gyro::ConvexBoxPairs, for the lanes.
+/// A chunk's box-box pairs in the column form of gyro::ConvexBoxPairs, for the lanes (on the
+/// stack, 22 KB, and not cleared: only the first n of each column are written and read).
 struct BoxColumns {
-  std::vector<float> col;           // 30 columns of n: A's centre, half extents, rotation, then B's
-  std::vector<std::size_t> index;   // the pairs' indices in the call
-  std::vector<gyro::ConvexResult> result;
+  float col[30][kPairChunk];  // A's centre, half extents, rotation, then B's
+  std::size_t index[kPairChunk];  // the pairs' indices in the call
+  gyro::ConvexResult result[kPairChunk];
+  std::size_t n = 0;
 
   void add(std::size_t i, const gyro::ConvexShape& sa, const gyro::ConvexPose& qa, const gyro::ConvexShape& sb,
            const gyro::ConvexPose& qb) {
-    const std::size_t k = index.size();
-    index.push_back(i);
-    const auto put = [&](int c, float v) { col[std::size_t(c) * kPairChunk + k] = v; };
+    const std::size_t k = n++;
+    index[k] = i;
     const auto box = [&](int base, const gyro::ConvexShape& s, const gyro::ConvexPose& q) {
-      put(base + 0, q.position.x), put(base + 1, q.position.y), put(base + 2, q.position.z);
-      put(base + 3, s.half_extents.x), put(base + 4, s.half_extents.y), put(base + 5, s.half_extents.z);
+      col[base + 0][k] = q.position.x, col[base + 1][k] = q.position.y, col[base + 2][k] = q.position.z;
+      col[base + 3][k] = s.half_extents.x, col[base + 4][k] = s.half_extents.y, col[base + 5][k] = s.half_extents.z;
       for (int r = 0; r < 3; ++r)
-        for (int c = 0; c < 3; ++c) put(base + 6 + 3 * r + c, q.rotation.m[r][c]);
+        for (int c = 0; c < 3; ++c) col[base + 6 + 3 * r + c][k] = q.rotation.m[r][c];
     };
     box(0, sa, qa), box(15, sb, qb);
   }
 
   gyro::ConvexBoxPairs view() const {
     gyro::ConvexBoxPairs p;
-    const auto at = [&](int c) { return col.data() + std::size_t(c) * kPairChunk; };
-    for (int k = 0; k < 3; ++k) p.a_center[k] = at(k), p.a_half[k] = at(3 + k), p.b_center[k] = at(15 + k), p.b_half[k] = at(18 + k);
-    for (int k = 0; k < 9; ++k) p.a_rot[k] = at(6 + k), p.b_rot[k] = at(21 + k);
+    for (int k = 0; k < 3; ++k) p.a_center[k] = col[k], p.a_half[k] = col[3 + k], p.b_center[k] = col[15 + k], p.b_half[k] = col[18 + k];
+    for (int k = 0; k < 9; ++k) p.a_rot[k] = col[6 + k], p.b_rot[k] = col[21 + k];
     return p;
   }
 };
 
 // The pairs of chunk [begin, end): box-box pairs through the box-pair batches (GJK over SIMD
-// lanes, the scalar query's bits), the others one by one. A chunk whose columns cannot be
-// allocated runs every pair one by one (the same bits): nothing escapes the OpenMP thread.
+// lanes, the scalar query's bits), the others one by one. Nothing escapes the OpenMP thread:
+// if the batches cannot allocate their lane state, the box pairs run one by one too.
 void run_chunk(const gyro_convex_shape* a, const gyro_convex_pose* pa, const gyro_convex_shape* b,
                const gyro_convex_pose* pb, std::size_t begin, std::size_t end, gyro_convex_result* out, Query query) {
   const gyro::ConvexQueryOptions options = options_of(query);
   BoxColumns boxes;
-  bool lanes = true;
-  try {
-    boxes.col.resize(30 * kPairChunk), boxes.index.reserve(kPairChunk), boxes.result.resize(kPairChunk);
-  } catch (const std::bad_alloc&) {
-    lanes = false;
-  }
   for (std::size_t i = begin; i < end; ++i) {
     gyro::ConvexShape sa, sb;
     gyro::ConvexPose qa, qb;
     const char* which = nullptr;
     if (pair_of(a[i], pa[i], b[i], pb[i], sa, qa, sb, qb, &which)) {
       out[i] = invalid_result();
-    } else if (lanes && sa.type == gyro::ConvexType::box && sb.type == gyro::ConvexType::box) {
+    } else if (sa.type == gyro::ConvexType::box && sb.type == gyro::ConvexType::box) {
       boxes.add(i, sa, qa, sb, qb);
     } else {
       out[i] = c_answer(query_pair(query, sa, qa, sb, qb, options));
     }
   }
-  const std::size_t n = boxes.index.size();
+  const std::size_t n = boxes.n;
   if (n == 0) return;
   const gyro::ConvexBoxPairs view = boxes.view();
-  try {  // the batches allocate their lane state
+  try {  // the batches make their lane state on a thread's first call
     switch (query) {
-      case Query::intersect: gyro::convex_intersect_batch(view, n, boxes.result.data(), options); break;
-      case Query::distance: gyro::convex_distance_batch(view, n, boxes.result.data(), options); break;
-      default: gyro::convex_penetration_batch(view, n, boxes.result.data(), options); break;
+      case Query::intersect: gyro::convex_intersect_batch(view, n, boxes.result, options); break;
+      case Query::distance: gyro::convex_distance_batch(view, n, boxes.result, options); break;
+      default: gyro::convex_penetration_batch(view, n, boxes.result, options); break;
     }
   } catch (const std::bad_alloc&) {
     for (std::size_t k = 0; k < n; ++k) {

@@ -565,11 +565,26 @@ void load_pair(const ConvexBoxPairs& p, std::size_t i, const BoxGjkBlock& blk, s
 // Runs the lane GJK over the pairs, block by block, and calls on_block(begin, end, block)
 // after each block. verdict_only: the caller needs only the intersect verdict (the lanes
 // keep no witnesses and form no results).
+// The lanes' state (61 KB) is the calling thread's, made once: callers with few pairs per
+// call (the C ABI hands over 128 at a time) spent most of their time clearing fresh copies.
+// A block leaves it dirty for the next one within a call already; a later call is no different.
+struct BoxBatchState {
+  BoxGjkBlock block;
+  BoxGjkWork work;
+};
+
+BoxBatchState& box_batch_state() {
+  thread_local std::unique_ptr<BoxBatchState> state;
+  if (!state) state = std::make_unique<BoxBatchState>();
+  return *state;
+}
+
 template <class OnBlock>
 void box_batch(const ConvexBoxPairs& p, std::size_t count, const ConvexQueryOptions& opt, Mode mode, bool verdict_only,
                OnBlock&& on_block) {
-  const auto block = std::make_unique<BoxGjkBlock>();
-  const auto work = std::make_unique<BoxGjkWork>();
+  BoxBatchState& state = box_batch_state();
+  BoxGjkBlock* const block = &state.block;
+  BoxGjkWork* const work = &state.work;
   BoxGjkParams prm;
   prm.touch_tolerance = opt.touch_tolerance, prm.max_iterations = opt.max_gjk_iterations;
   prm.boolean = stops_early(mode, opt), prm.verdict_only = verdict_only;
