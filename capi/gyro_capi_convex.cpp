@@ -17,6 +17,7 @@
 #include "gyro/convex.hpp"
 #include "gyro/math_quat.hpp"
 
+#include <bit>
 #include <climits>
 #include <cstddef>
 #include <cstring>
@@ -144,11 +145,8 @@ const char* shape_of(const gyro_convex_shape& c, gyro::ConvexShape& out) {
   return nullptr;
 }
 
-/// Why a pose cannot be used (nullptr: it can), and the C++ pose when it can.
-const char* pose_of(const gyro_convex_pose& c, gyro::ConvexPose& out) {
-  if (!(finite3(c.position) & finite3(c.rotation[0]) & finite3(c.rotation[1]) & finite3(c.rotation[2])))
-    return "the pose has a NaN or infinite value";
-  const gyro_vec3 &r0 = c.rotation[0], &r1 = c.rotation[1], &r2 = c.rotation[2];
+/// 1 when finite rotation rows are orthonormal to kRotationTolerance and right-handed.
+unsigned rotation_ok(const gyro_vec3& r0, const gyro_vec3& r1, const gyro_vec3& r2) {
   const float t = kRotationTolerance;
   const float n0 = dot3(r0, r0) - 1.0f, n1 = dot3(r1, r1) - 1.0f, n2 = dot3(r2, r2) - 1.0f;
   const float o01 = dot3(r0, r1), o02 = dot3(r0, r2), o12 = dot3(r1, r2);
@@ -156,7 +154,14 @@ const char* pose_of(const gyro_convex_pose& c, gyro::ConvexPose& out) {
   const unsigned orthogonal = within(o01, -t, t) & within(o02, -t, t) & within(o12, -t, t);
   // det = r0 . (r1 x r2): +1 for a rotation, -1 for a reflection.
   const gyro_vec3 cross{r1.y * r2.z - r1.z * r2.y, r1.z * r2.x - r1.x * r2.z, r1.x * r2.y - r1.y * r2.x};
-  if (!(unit & orthogonal & unsigned(dot3(r0, cross) > 0.0f)))
+  return unit & orthogonal & unsigned(dot3(r0, cross) > 0.0f);
+}
+
+/// Why a pose cannot be used (nullptr: it can), and the C++ pose when it can.
+const char* pose_of(const gyro_convex_pose& c, gyro::ConvexPose& out) {
+  if (!(finite3(c.position) & finite3(c.rotation[0]) & finite3(c.rotation[1]) & finite3(c.rotation[2])))
+    return "the pose has a NaN or infinite value";
+  if (!rotation_ok(c.rotation[0], c.rotation[1], c.rotation[2]))
     return "the pose's rotation rows are not orthonormal and right-handed";
   gyro::ConvexPose p;
   p.position = v3(c.position);
@@ -221,24 +226,69 @@ gyro_convex_result c_answer(const gyro::ConvexResult& r) {
 }
 
 /// A chunk's box-box pairs in the column form of gyro::ConvexBoxPairs, for the lanes (on the
-/// stack, 22 KB, and not cleared: only the first n of each column are written and read).
+/// stack, 23 KB, and not cleared: only the first n of each column are written and read).
+/// They are staged unchecked and checked in columns (check()): shape_of and pose_of per pair
+/// cost as much as the lanes' GJK.
 struct BoxColumns {
-  float col[30][kPairChunk];  // A's centre, half extents, rotation, then B's
+  float col[30][kPairChunk];  // A's centre, half extents, rotation rows, then B's
   std::size_t index[kPairChunk];  // the pairs' indices in the call
+  unsigned valid[kPairChunk];
   gyro::ConvexResult result[kPairChunk];
   std::size_t n = 0;
 
-  void add(std::size_t i, const gyro::ConvexShape& sa, const gyro::ConvexPose& qa, const gyro::ConvexShape& sb,
-           const gyro::ConvexPose& qb) {
+  /// Two shapes that shape_of would read as boxes (their other fields unread).
+  static bool boxes(const gyro_convex_shape& a, const gyro_convex_shape& b) {
+    return (a.type == GYRO_CONVEX_BOX) & (b.type == GYRO_CONVEX_BOX) & (a.reserved == 0) & (b.reserved == 0) &
+           (a.hull == nullptr) & (b.hull == nullptr);
+  }
+
+  void add(std::size_t i, const gyro_convex_shape& a, const gyro_convex_pose& pa, const gyro_convex_shape& b,
+           const gyro_convex_pose& pb) {
     const std::size_t k = n++;
     index[k] = i;
-    const auto box = [&](int base, const gyro::ConvexShape& s, const gyro::ConvexPose& q) {
+    const auto box = [&](int base, const gyro_convex_shape& s, const gyro_convex_pose& q) {
       col[base + 0][k] = q.position.x, col[base + 1][k] = q.position.y, col[base + 2][k] = q.position.z;
       col[base + 3][k] = s.half_extents.x, col[base + 4][k] = s.half_extents.y, col[base + 5][k] = s.half_extents.z;
       for (int r = 0; r < 3; ++r)
-        for (int c = 0; c < 3; ++c) col[base + 6 + 3 * r + c][k] = q.rotation.m[r][c];
+        col[base + 6 + 3 * r][k] = q.rotation[r].x, col[base + 7 + 3 * r][k] = q.rotation[r].y,
+                       col[base + 8 + 3 * r][k] = q.rotation[r].z;
     };
-    box(0, sa, qa), box(15, sb, qb);
+    box(0, a, pa), box(15, b, pb);
+  }
+
+  /// valid[k]: pair k passes shape_of and pose_of (the same tests and expressions, so the
+  /// same verdict), eight pairs at a time in loops the compiler turns into vector code (the
+  /// columns are padded to a multiple of eight with zeros, which are not read afterwards).
+  void check() {
+    const std::size_t padded = (n + 7) & ~std::size_t(7);
+    for (std::size_t k = n; k < padded; ++k)
+      for (auto& c : col) c[k] = 0.0f;
+    for (std::size_t k0 = 0; k0 < padded; k0 += 8) {
+      unsigned ok[8];
+      for (unsigned& o : ok) o = 1;
+      for (const auto& c : col)  // every value finite
+        for (int j = 0; j < 8; ++j) ok[j] &= unsigned((std::bit_cast<uint32_t>(c[k0 + j]) & 0x7f800000u) != 0x7f800000u);
+      for (int c : {3, 4, 5, 18, 19, 20})  // half extents not negative
+        for (int j = 0; j < 8; ++j) ok[j] &= unsigned(col[c][k0 + j] >= 0.0f);
+      for (int base : {6, 21}) {  // rotation_ok's expressions, lane by lane
+        const float* r = &col[base][k0];
+        const auto at = [&](int q, int j) { return r[std::size_t(q) * kPairChunk + std::size_t(j)]; };
+        const float t = kRotationTolerance;
+        for (int j = 0; j < 8; ++j) {
+          const float x0 = at(0, j), y0 = at(1, j), z0 = at(2, j), x1 = at(3, j), y1 = at(4, j), z1 = at(5, j);
+          const float x2 = at(6, j), y2 = at(7, j), z2 = at(8, j);
+          const float n0 = ((x0 * x0 + y0 * y0) + z0 * z0) - 1.0f, n1 = ((x1 * x1 + y1 * y1) + z1 * z1) - 1.0f;
+          const float n2 = ((x2 * x2 + y2 * y2) + z2 * z2) - 1.0f;
+          const float o01 = (x0 * x1 + y0 * y1) + z0 * z1, o02 = (x0 * x2 + y0 * y2) + z0 * z2;
+          const float o12 = (x1 * x2 + y1 * y2) + z1 * z2;
+          const float cx = y1 * z2 - z1 * y2, cy = z1 * x2 - x1 * z2, cz = x1 * y2 - y1 * x2;
+          const float det = (x0 * cx + y0 * cy) + z0 * cz;
+          ok[j] &= within(n0, -2.0f * t, 2.0f * t) & within(n1, -2.0f * t, 2.0f * t) & within(n2, -2.0f * t, 2.0f * t) &
+                   within(o01, -t, t) & within(o02, -t, t) & within(o12, -t, t) & unsigned(det > 0.0f);
+        }
+      }
+      for (int j = 0; j < 8; ++j) valid[k0 + std::size_t(j)] = ok[j];
+    }
   }
 
   gyro::ConvexBoxPairs view() const {
@@ -257,22 +307,22 @@ void run_chunk(const gyro_convex_shape* a, const gyro_convex_pose* pa, const gyr
   const gyro::ConvexQueryOptions options = options_of(query);
   BoxColumns boxes;
   for (std::size_t i = begin; i < end; ++i) {
+    if (BoxColumns::boxes(a[i], b[i])) {
+      boxes.add(i, a[i], pa[i], b[i], pb[i]);
+      continue;
+    }
     gyro::ConvexShape sa, sb;
     gyro::ConvexPose qa, qb;
     const char* which = nullptr;
-    if (pair_of(a[i], pa[i], b[i], pb[i], sa, qa, sb, qb, &which)) {
-      out[i] = invalid_result();
-    } else if (sa.type == gyro::ConvexType::box && sb.type == gyro::ConvexType::box) {
-      boxes.add(i, sa, qa, sb, qb);
-    } else {
-      out[i] = c_answer(query_pair(query, sa, qa, sb, qb, options));
-    }
+    if (pair_of(a[i], pa[i], b[i], pb[i], sa, qa, sb, qb, &which)) out[i] = invalid_result();
+    else out[i] = c_answer(query_pair(query, sa, qa, sb, qb, options));
   }
   const std::size_t n = boxes.n;
   if (n == 0) return;
+  boxes.check();
   const gyro::ConvexBoxPairs view = boxes.view();
   try {  // the batches make their lane state on a thread's first call
-    switch (query) {
+    switch (query) {  // invalid pairs too (the batches answer them; their answers are dropped)
       case Query::intersect: gyro::convex_intersect_batch(view, n, boxes.result, options); break;
       case Query::distance: gyro::convex_distance_batch(view, n, boxes.result, options); break;
       default: gyro::convex_penetration_batch(view, n, boxes.result, options); break;
@@ -283,11 +333,12 @@ void run_chunk(const gyro_convex_shape* a, const gyro_convex_pose* pa, const gyr
       gyro::ConvexShape sa, sb;
       gyro::ConvexPose qa, qb;
       const char* which = nullptr;
-      pair_of(a[i], pa[i], b[i], pb[i], sa, qa, sb, qb, &which);  // answerable: checked above
-      boxes.result[k] = query_pair(query, sa, qa, sb, qb, options);
+      if (!pair_of(a[i], pa[i], b[i], pb[i], sa, qa, sb, qb, &which))
+        boxes.result[k] = query_pair(query, sa, qa, sb, qb, options);
     }
   }
-  for (std::size_t k = 0; k < n; ++k) out[boxes.index[k]] = c_answer(boxes.result[k]);
+  for (std::size_t k = 0; k < n; ++k)
+    out[boxes.index[k]] = boxes.valid[k] ? c_answer(boxes.result[k]) : invalid_result();
 }
 
 gyro_status run_pairs(const gyro_convex_shape* a, const gyro_convex_pose* pa, const gyro_convex_shape* b,

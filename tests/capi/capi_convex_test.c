@@ -464,6 +464,49 @@ static void test_invalid_pairs(void) {
   gyro_convex_hull_destroy(cube);
 }
 
+typedef gyro_status (*pairs_fn)(const gyro_convex_shape*, const gyro_convex_pose*, const gyro_convex_shape*,
+                                const gyro_convex_pose*, int32_t, gyro_convex_result*);
+
+/* Bad box-box pairs (the pair calls check those in columns, before the lanes): flagged one by
+   one by every call, the good ones answered as one by one. */
+#define BAD_BOXES 10
+static void test_invalid_box_pairs(void) {
+  gyro_convex_hull* cube = cube_hull();
+  gyro_convex_shape a[BAD_BOXES], b[BAD_BOXES];
+  gyro_convex_pose pa[BAD_BOXES], pb[BAD_BOXES];
+  gyro_convex_result out[BAD_BOXES], one;
+  pairs_fn queries[4] = {gyro_convex_intersect_pairs, gyro_convex_distance_pairs, gyro_convex_penetration_pairs,
+                         gyro_convex_contact_pairs};
+  int i, q;
+  if (!cube) return;
+  for (i = 0; i < BAD_BOXES; ++i) {
+    a[i] = box(1.0f, 1.0f, 1.0f), b[i] = box(0.5f, 1.0f, 1.5f);
+    pa[i] = pose_at(0.0f, 0.0f, 0.0f), pb[i] = pose_at(1.5f + 0.5f * (float)(i % 3), 0.2f, 0.0f);
+  }
+  pa[1].position.y = NAN;         /* a NaN position */
+  pb[2].rotation[1].z = INFINITY; /* an infinite rotation */
+  b[3].half_extents.y = -1.0f;    /* a negative size */
+  pb[4].rotation[0].x = 2.0f;     /* a row that is not unit */
+  pa[5].rotation[2].z = -1.0f;    /* a reflection */
+  b[6].reserved = 1;              /* reserved not 0 */
+  a[7].hull = cube;               /* a hull for a box */
+  b[8].half_extents.z = NAN;      /* a NaN size */
+  pb[9].rotation[0].y = 0.01f;    /* rows 1% off orthogonal: beyond the 1e-3 tolerance */
+  for (q = 0; q < 4; ++q) {
+    memset(out, 0xAB, sizeof out);
+    CHECK(queries[q](a, pa, b, pb, BAD_BOXES, out) == GYRO_OK);
+    CHECK(out[0].status == GYRO_CONVEX_INTERSECTING || out[0].status == GYRO_CONVEX_TOUCHING);
+    CHECK(queries[q](a, pa, b, pb, 1, &one) == GYRO_OK); /* pair 0 alone: the same bytes */
+    CHECK(memcmp(&one, &out[0], sizeof one) == 0);
+    for (i = 1; i < BAD_BOXES; ++i) {
+      CHECK(out[i].status == GYRO_CONVEX_INVALID_INPUT);
+      CHECK(out[i].distance == 0.0f && out[i].normal.x == 0.0f && out[i].point_b.z == 0.0f && out[i].iterations == 0);
+    }
+    CHECK(strstr(gyro_last_error(), "pair 1") != NULL);
+  }
+  gyro_convex_hull_destroy(cube);
+}
+
 /* A seeded batch of mixed pairs, a third of them box-box (those run over SIMD lanes): every
    query gives the same bits at 1 and 4 threads and at the scalar level (pair by pair). */
 #define MANY 2000
@@ -488,8 +531,6 @@ static gyro_convex_pose random_pose(void) {
   CHECK(gyro_convex_pose_from_quat(vec3(rnd(-2.0f, 2.0f), rnd(-2.0f, 2.0f), rnd(-2.0f, 2.0f)), q, &p) == GYRO_OK);
   return p;
 }
-typedef gyro_status (*pairs_fn)(const gyro_convex_shape*, const gyro_convex_pose*, const gyro_convex_shape*,
-                                const gyro_convex_pose*, int32_t, gyro_convex_result*);
 static void test_thread_invariance(void) {
   gyro_convex_hull* cube = cube_hull();
   gyro_convex_shape* a = malloc(MANY * sizeof *a);
@@ -734,6 +775,7 @@ int main(void) {
   test_pose_from_quat();
   test_known_answers();
   test_invalid_pairs();
+  test_invalid_box_pairs();
   test_thread_invariance();
   test_body_def();
   test_convex_bodies();
