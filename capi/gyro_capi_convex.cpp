@@ -226,9 +226,9 @@ gyro_convex_result c_answer(const gyro::ConvexResult& r) {
 }
 
 /// A chunk's box-box pairs in the column form of gyro::ConvexBoxPairs, for the lanes (on the
-/// stack, 23 KB, and not cleared: only the first n of each column are written and read).
-/// They are staged unchecked and checked in columns (check()): shape_of and pose_of per pair
-/// cost as much as the lanes' GJK.
+/// stack, 23 KB, not cleared: the first n of each column are written, and check() pads them
+/// with zeros to a multiple of eight). They are staged unchecked and checked in columns:
+/// shape_of and pose_of pair by pair had cost as much as the lanes' GJK.
 struct BoxColumns {
   float col[30][kPairChunk];  // A's centre, half extents, rotation rows, then B's
   std::size_t index[kPairChunk];  // the pairs' indices in the call
