@@ -16,8 +16,11 @@
 // out, the mesh kernel ran 7 to 11% more instructions (callgrind, R2); even the child
 // ordering alone (one inline function for both, same results) cost R1 8.6% (27.9 M ->
 // 30.3 M instructions on 20k rays, AVX2), so enter_node()'s ordering block is written
-// twice. Rays from one origin (closest hit) walk in packets of eight through the walk both
-// kernels share (packet_walk.hpp; sharing it cost the LIDAR packets 2% more instructions).
+// twice. Measured again after the register cursor (walk_alone): a shared template taking
+// values in and out (so no aliasing through references) still ran 24.8 M -> 26.3 M
+// instructions and was slower in 5 of 6 alternating R1 runs (median -6%). Rays from one
+// origin (closest hit) walk in packets of eight through the walk both kernels share
+// (packet_walk.hpp; sharing it cost the LIDAR packets 2% more instructions).
 // Any hit: a leaf's items are tried in lane order and the walk stops at the first hit, the
 // order the scalar walk tries them in.
 #include "geometry/ray_lanes.hpp"
