@@ -95,8 +95,6 @@ Status copy_out(T* out, int32_t capacity, int32_t* count, std::size_t n, const c
 
 // ---- the per-pair check and conversion ----
 
-float dot3(const gyro_vec3& a, const gyro_vec3& b) { return (a.x * b.x + a.y * b.y) + a.z * b.z; }
-
 // The per-pair checks below run once per pair before a query of a few hundred nanoseconds:
 // they combine their tests with & (no branch per test) and test finiteness bitwise.
 // (0 or 1 as unsigned: & of function results, which clang would warn of for bool.)
@@ -145,23 +143,28 @@ const char* shape_of(const gyro_convex_shape& c, gyro::ConvexShape& out) {
   return nullptr;
 }
 
-/// 1 when finite rotation rows are orthonormal to kRotationTolerance and right-handed.
-unsigned rotation_ok(const gyro_vec3& r0, const gyro_vec3& r1, const gyro_vec3& r2) {
+/// 1 when finite rotation rows (x0 y0 z0), (x1 y1 z1), (x2 y2 z2) are orthonormal to
+/// kRotationTolerance and right-handed. Plain floats in and out: BoxColumns::check() calls it
+/// lane by lane in a loop the compiler vectorizes.
+inline unsigned rotation_ok(float x0, float y0, float z0, float x1, float y1, float z1, float x2, float y2, float z2) {
   const float t = kRotationTolerance;
-  const float n0 = dot3(r0, r0) - 1.0f, n1 = dot3(r1, r1) - 1.0f, n2 = dot3(r2, r2) - 1.0f;
-  const float o01 = dot3(r0, r1), o02 = dot3(r0, r2), o12 = dot3(r1, r2);
-  const unsigned unit = within(n0, -2.0f * t, 2.0f * t) & within(n1, -2.0f * t, 2.0f * t) & within(n2, -2.0f * t, 2.0f * t);
-  const unsigned orthogonal = within(o01, -t, t) & within(o02, -t, t) & within(o12, -t, t);
+  const float n0 = ((x0 * x0 + y0 * y0) + z0 * z0) - 1.0f, n1 = ((x1 * x1 + y1 * y1) + z1 * z1) - 1.0f;
+  const float n2 = ((x2 * x2 + y2 * y2) + z2 * z2) - 1.0f;
+  const float o01 = (x0 * x1 + y0 * y1) + z0 * z1, o02 = (x0 * x2 + y0 * y2) + z0 * z2;
+  const float o12 = (x1 * x2 + y1 * y2) + z1 * z2;
   // det = r0 . (r1 x r2): +1 for a rotation, -1 for a reflection.
-  const gyro_vec3 cross{r1.y * r2.z - r1.z * r2.y, r1.z * r2.x - r1.x * r2.z, r1.x * r2.y - r1.y * r2.x};
-  return unit & orthogonal & unsigned(dot3(r0, cross) > 0.0f);
+  const float cx = y1 * z2 - z1 * y2, cy = z1 * x2 - x1 * z2, cz = x1 * y2 - y1 * x2;
+  const float det = (x0 * cx + y0 * cy) + z0 * cz;
+  return within(n0, -2.0f * t, 2.0f * t) & within(n1, -2.0f * t, 2.0f * t) & within(n2, -2.0f * t, 2.0f * t) &
+         within(o01, -t, t) & within(o02, -t, t) & within(o12, -t, t) & unsigned(det > 0.0f);
 }
 
 /// Why a pose cannot be used (nullptr: it can), and the C++ pose when it can.
 const char* pose_of(const gyro_convex_pose& c, gyro::ConvexPose& out) {
   if (!(finite3(c.position) & finite3(c.rotation[0]) & finite3(c.rotation[1]) & finite3(c.rotation[2])))
     return "the pose has a NaN or infinite value";
-  if (!rotation_ok(c.rotation[0], c.rotation[1], c.rotation[2]))
+  const gyro_vec3 &r0 = c.rotation[0], &r1 = c.rotation[1], &r2 = c.rotation[2];
+  if (!rotation_ok(r0.x, r0.y, r0.z, r1.x, r1.y, r1.z, r2.x, r2.y, r2.z))
     return "the pose's rotation rows are not orthonormal and right-handed";
   gyro::ConvexPose p;
   p.position = v3(c.position);
@@ -270,22 +273,11 @@ struct BoxColumns {
         for (int j = 0; j < 8; ++j) ok[j] &= unsigned((std::bit_cast<uint32_t>(c[k0 + j]) & 0x7f800000u) != 0x7f800000u);
       for (int c : {3, 4, 5, 18, 19, 20})  // half extents not negative
         for (int j = 0; j < 8; ++j) ok[j] &= unsigned(col[c][k0 + j] >= 0.0f);
-      for (int base : {6, 21}) {  // rotation_ok's expressions, lane by lane
+      for (int base : {6, 21}) {  // the rotations, lane by lane
         const float* r = &col[base][k0];
         const auto at = [&](int q, int j) { return r[std::size_t(q) * kPairChunk + std::size_t(j)]; };
-        const float t = kRotationTolerance;
-        for (int j = 0; j < 8; ++j) {
-          const float x0 = at(0, j), y0 = at(1, j), z0 = at(2, j), x1 = at(3, j), y1 = at(4, j), z1 = at(5, j);
-          const float x2 = at(6, j), y2 = at(7, j), z2 = at(8, j);
-          const float n0 = ((x0 * x0 + y0 * y0) + z0 * z0) - 1.0f, n1 = ((x1 * x1 + y1 * y1) + z1 * z1) - 1.0f;
-          const float n2 = ((x2 * x2 + y2 * y2) + z2 * z2) - 1.0f;
-          const float o01 = (x0 * x1 + y0 * y1) + z0 * z1, o02 = (x0 * x2 + y0 * y2) + z0 * z2;
-          const float o12 = (x1 * x2 + y1 * y2) + z1 * z2;
-          const float cx = y1 * z2 - z1 * y2, cy = z1 * x2 - x1 * z2, cz = x1 * y2 - y1 * x2;
-          const float det = (x0 * cx + y0 * cy) + z0 * cz;
-          ok[j] &= within(n0, -2.0f * t, 2.0f * t) & within(n1, -2.0f * t, 2.0f * t) & within(n2, -2.0f * t, 2.0f * t) &
-                   within(o01, -t, t) & within(o02, -t, t) & within(o12, -t, t) & unsigned(det > 0.0f);
-        }
+        for (int j = 0; j < 8; ++j)
+          ok[j] &= rotation_ok(at(0, j), at(1, j), at(2, j), at(3, j), at(4, j), at(5, j), at(6, j), at(7, j), at(8, j));
       }
       for (int j = 0; j < 8; ++j) valid[k0 + std::size_t(j)] = ok[j];
     }
