@@ -13,6 +13,8 @@
 #include "geometry/gjk_batch.hpp"
 #include "geometry/gjk_lanes.hpp"
 
+#include <array>
+
 namespace gyro::GYRO_ARCH_NS {
 namespace {
 
@@ -264,6 +266,50 @@ std::size_t pack(BoxGjkWork& w, std::size_t count, bool verdict_only, BoxGjkBloc
       _mm512_mask_compressstoreu_epi32(w.pair + m, keep, pair);
       for_each_column(w, [&](float* col) {
         _mm512_mask_compressstoreu_ps(col + m, keep, _mm512_maskz_loadu_ps(valid, col + j));
+      });
+    }
+    m += kept;
+  }
+  return m;
+}
+#elif defined(GYRO_ARCH_AVX2)
+// For each 8-bit keep mask, the kept lanes' indices in order (4 bits each, low first): the
+// permutation that moves them to the front.
+constexpr auto kCompress = [] {
+  std::array<uint32_t, 256> t{};
+  for (unsigned m = 0; m < 256; ++m) {
+    uint32_t idx = 0;
+    int n = 0;
+    for (int k = 0; k < 8; ++k)
+      if (m >> k & 1u) idx |= uint32_t(k) << (4 * n++);
+    t[m] = idx;
+  }
+  return t;
+}();
+
+// pack() as the AVX-512 one, eight slots at a time: the kept lanes are permuted to the front
+// and all eight stored at m; the lanes past the kept ones land on slots that a later block
+// overwrites or that are past the end (m + 8 <= j + 8, so never on a slot not yet read).
+std::size_t pack(BoxGjkWork& w, std::size_t count, bool verdict_only, BoxGjkBlock& out) {
+  std::size_t m = 0;
+  const __m256i shifts = _mm256_setr_epi32(0, 4, 8, 12, 16, 20, 24, 28);
+  for (std::size_t j = 0; j < count; j += 8) {
+    const std::size_t len = count - j < 8 ? count - j : 8;
+    const unsigned valid = (1u << len) - 1u;
+    // Lanes past count load as zeros (masked loads), as the AVX-512 pack's.
+    const __m256i live = _mm256_cmpgt_epi32(_mm256_set1_epi32(int(len)), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7));
+    const __m256i st = _mm256_maskload_epi32(reinterpret_cast<const int*>(w.state + j), live);
+    const unsigned keep =
+        valid & unsigned(_mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpeq_epi32(st, _mm256_setzero_si256()))));
+    for (unsigned bits = valid & ~keep; bits != 0; bits &= bits - 1u)
+      finish_if_valid(w, j + std::size_t(__builtin_ctz(bits)), verdict_only, out);
+    const std::size_t kept = std::size_t(__builtin_popcount(keep));
+    if (m != j || kept != len) {
+      const __m256i perm = _mm256_srlv_epi32(_mm256_set1_epi32(int(kCompress[keep])), shifts);
+      const __m256i pair = _mm256_maskload_epi32(reinterpret_cast<const int*>(w.pair + j), live);
+      _mm256_storeu_si256(reinterpret_cast<__m256i*>(w.pair + m), _mm256_permutevar8x32_epi32(pair, perm));
+      for_each_column(w, [&](float* col) {
+        _mm256_storeu_ps(col + m, _mm256_permutevar8x32_ps(_mm256_maskload_ps(col + j, live), perm));
       });
     }
     m += kept;
