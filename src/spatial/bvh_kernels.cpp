@@ -60,15 +60,39 @@ inline LeafRay leaf_ray(const float o[3], const float d[3]) {
   return {{kx, ky, kz}, {Quad(o[kx]), Quad(o[ky]), Quad(o[kz])}, Quad(w.sx), Quad(w.sy), Quad(w.sz)};
 }
 
+// ray_triangle_t's double path (ray_triangle_lanes.hpp: hits whose edge functions cancelled)
+// for the lanes in `flag`, from ray i as given: the same inputs, so the same bits. Out of
+// line and cold, and reading the ray from the arguments: any state it added to the walk cost
+// the common path 5 to 8% more instructions (R2, callgrind).
+[[gnu::noinline, gnu::cold]] Quad refined_t(const BvhRaycastArgs& a, std::size_t i, const BvhLeaf4& leaf,
+                                            detail_rt::mask_of<Quad> flag, Quad t) {
+  const float o[3] = {a.ox[i], a.oy[i], a.oz[i]}, d[3] = {a.dx[i], a.dy[i], a.dz[i]};
+  float f[4], ts[4];
+  store(f, select(flag, Quad(1.0f), Quad(0.0f)));
+  store(ts, t);
+  for (int k = 0; k < 4; ++k) {
+    if (f[k] == 0.0f) continue;
+    float c[3][3];
+    for (int q = 0; q < 9; ++q) c[q / 3][q % 3] = leaf.corner[q][k];
+    const detail_rt::RefinedHit h = detail_rt::refine_hit(c[0], c[1], c[2], o, d);
+    if (h.ok) ts[k] = h.t;
+  }
+  return load<Quad>(ts);
+}
+
 // Only t of ray_triangle_t (the same expressions, so the same bits): the traversal needs no
 // barycentrics, and the caller recomputes them for the one triangle that wins.
-inline Quad leaf_t(const LeafRay& r, const BvhLeaf4& leaf, Quad tmin, Quad tmax) {
+// Ray i of a (for the double path of ray_triangle_lanes.hpp) in its frame r.
+inline Quad leaf_t(const BvhRaycastArgs& a, std::size_t i, const LeafRay& r, const BvhLeaf4& leaf, Quad tmin, Quad tmax) {
   const auto corner = [&](int c) {
     const auto row = [&](int k) { return load<Quad>(leaf.corner[3 * c + r.row[k]]) - r.o[k]; };
     return V3<Quad>(row(0), row(1), row(2));
   };
   const auto k = detail_rt::permuted_terms(r.sx, r.sy, r.sz, corner(0), corner(1), corner(2));
-  const Quad t = k.T / k.det;
+  if (!any(k.inside)) return Quad(kInf);  // most leaves a ray enters it does not hit
+  Quad t = k.T / k.det;
+  const auto cancelled = k.cancelled();
+  if (any(cancelled)) t = refined_t(a, i, leaf, cancelled, t);
   return select(k.inside && (t >= tmin) && (t <= tmax), t + Quad(0.0f), Quad(kInf));
 }
 
@@ -120,11 +144,12 @@ inline void start(const Bvh8& bvh, Walk& w, std::size_t ray, const float o[3], c
 }
 
 // Visits w.next and picks the one after it; false when the walk is over.
-template <bool AnyHit, bool Turns> inline bool step(const Bvh8& bvh, Walk& w) {
+template <bool AnyHit, bool Turns> inline bool step(const BvhRaycastArgs& a, Walk& w) {
+  const Bvh8& bvh = *a.bvh;
   const Entry e = w.next;
   if (e.code & kLeafBit) {
     const BvhLeaf4& leaf = bvh.leaves[e.code & ~kLeafBit];
-    const Quad t = leaf_t(w.leaf, leaf, w.tmin4, w.tmax4);
+    const Quad t = leaf_t(a, w.ray, w.leaf, leaf, w.tmin4, w.tmax4);
     if (any(t < Quad(kInf))) {  // most leaves a ray enters it does not hit
       float ts[4];
       store(ts, t);
@@ -265,7 +290,8 @@ inline bool start_packet(const BvhRaycastArgs& a, const std::size_t* idx, int n,
 }
 
 // The packet's walk from the root (packet_walk.hpp); the rays' answers in P.best_t, P.best_id.
-inline void walk_packet(const Bvh8& bvh, Packet& P, unsigned rays) {
+inline void walk_packet(const BvhRaycastArgs& a, const std::size_t* idx, Packet& P, unsigned rays) {
+  const Bvh8& bvh = *a.bvh;
   // bound - o is the same for every ray of the packet: once, in a float (the lane
   // expression's bits), then times each ray's 1/d.
   const auto enter = [&](const BvhNode8& node, int c, const Oct& limit, Oct& tn) {
@@ -280,7 +306,7 @@ inline void walk_packet(const Bvh8& bvh, Packet& P, unsigned rays) {
     const BvhLeaf4& leaf = bvh.leaves[code & ~kLeafBit];
     for (unsigned m = mask; m != 0; m &= m - 1) {
       const int r = __builtin_ctz(m);
-      const Quad t = leaf_t(P.leaf[r], leaf, P.tmin4[r], P.tmax4[r]);
+      const Quad t = leaf_t(a, idx[r], P.leaf[r], leaf, P.tmin4[r], P.tmax4[r]);
       if (!any(t < Quad(kInf))) continue;
       float ts[4];
       store(ts, t);
@@ -321,7 +347,7 @@ template <bool AnyHit, bool Turns> void run(const BvhRaycastArgs& a, std::size_t
   };
   if constexpr (!Turns) {  // one ray at a time: no bookkeeping of turns
     while (refill(walks[0])) {
-      while (step<AnyHit, Turns>(*a.bvh, walks[0])) {
+      while (step<AnyHit, Turns>(a, walks[0])) {
       }
       finish(walks[0]);
     }
@@ -332,7 +358,7 @@ template <bool AnyHit, bool Turns> void run(const BvhRaycastArgs& a, std::size_t
   while (n > 0) {
     for (int j = 0; j < n;) {
       Walk& w = walks[live[j]];
-      if (step<AnyHit, Turns>(*a.bvh, w)) {
+      if (step<AnyHit, Turns>(a, w)) {
         ++j;
         continue;
       }
@@ -364,7 +390,7 @@ void run_packets(const BvhRaycastArgs& a, std::size_t begin, std::size_t end) {
     }
     if (n == 0) return;
     if (start_packet(a, idx, n, P)) {
-      walk_packet(*a.bvh, P, (1u << n) - 1u);
+      walk_packet(a, idx, P, (1u << n) - 1u);
       for (int r = 0; r < n; ++r) a.t_out[idx[r]] = P.best_t[r], a.index_out[idx[r]] = P.best_id[r];
       continue;
     }
@@ -372,7 +398,7 @@ void run_packets(const BvhRaycastArgs& a, std::size_t begin, std::size_t end) {
       const std::size_t i = idx[r];
       const float o[3] = {a.ox[i], a.oy[i], a.oz[i]}, d[3] = {a.dx[i], a.dy[i], a.dz[i]};
       start<false>(*a.bvh, w, i, o, d, a.tmin ? a.tmin[i] : 0.0f, a.tmax ? a.tmax[i] : kInf);
-      while (step<false, false>(*a.bvh, w)) {
+      while (step<false, false>(a, w)) {
       }
       a.t_out[i] = w.best_t;
       a.index_out[i] = w.best_id;

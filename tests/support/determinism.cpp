@@ -11,6 +11,7 @@
 #include "gyro/frustum.hpp"
 #include "gyro/mesh.hpp"
 #include "gyro/scene.hpp"
+#include "gyro/triangle.hpp"
 #include "gyro/triangle_mesh.hpp"
 #include "spatial/bvh.hpp"
 #endif
@@ -373,6 +374,64 @@ RaySet fan(const vec3& o, float az0, float az1, int columns, float el0, float el
     }
   }
   return r;
+}
+
+// Slivers (a third corner 1e-4 to 1e-3 of the length off the line of the other two): most
+// hits take the watertight test's double path (ray_triangle_lanes.hpp), whose doubles must
+// round alike everywhere. Random rays and a fan from one origin (the packet walk), closest
+// hits with normals and barycentrics, and the scalar raycast's t and weights.
+uint64_t scene_mesh_slivers() {
+  static const MeshData mesh = [] {
+    MeshData m;
+    SplitMix64 rng(45);
+    for (int t = 0; t < 2000; ++t) {
+      const vec3 c{float(20 * rng.u()), float(20 * rng.u()), float(20 * rng.u())};
+      const vec3 a = c + vec3{float(rng.u() - 0.5), float(rng.u() - 0.5), float(rng.u() - 0.5)} * 4.0f;
+      const vec3 b = c + vec3{float(rng.u() - 0.5), float(rng.u() - 0.5), float(rng.u() - 0.5)} * 4.0f;
+      const float f = float(rng.u()), w = float(1e-4 + 9e-4 * rng.u()) * length(b - a);
+      const vec3 off{float(rng.u() - 0.5), float(rng.u() - 0.5), float(rng.u() - 0.5)};
+      const uint32_t v = uint32_t(m.vertex_count());
+      m.add_vertex(a), m.add_vertex(b), m.add_vertex(a + (b - a) * f + off * w);
+      m.add_triangle(v, v + 1, v + 2);
+    }
+    return m;
+  }();
+  static const RaySet rays = [] {
+    RaySet r;
+    SplitMix64 rng(46);
+    for (int i = 0; i < 3000; ++i)
+      r.push(float(24 * rng.u() - 2), float(24 * rng.u() - 2), float(24 * rng.u() - 2), float(rng.u() - 0.5),
+             float(rng.u() - 0.5), float(rng.u() - 0.5));
+    return r;
+  }();
+  static const RaySet fan_rays = fan({10.0f, 10.0f, 10.0f}, 0.0f, 6.2831853f, 96, -1.2f, 1.2f, 24);
+  TriangleMesh tm;
+  if (TriangleMesh::create(mesh, tm) != Status::ok) return 0;
+  detail::StateHasher h;
+  for (const RaySet* set : {&rays, &fan_rays}) {
+    HitSet hits(set->size());
+    std::vector<float> u(set->size()), v(set->size());
+    HitsOut o = hits.out();
+    o.u = u.data(), o.v = v.data();
+    if (raycast_closest(tm, set->view(), set->size(), o) != Status::ok) return 0;
+    h.add_floats(hits.t), h.add_floats(hits.nx), h.add_floats(hits.ny), h.add_floats(hits.nz), h.add_floats(u),
+        h.add_floats(v);
+    for (int32_t k : hits.primitive) h.add_u32(uint32_t(k));
+  }
+  for (std::size_t i = 0; i < rays.size(); i += 3) {
+    const uint32_t k = uint32_t(i % mesh.triangle_count());
+    const auto corner = [&](int c) {
+      const uint32_t q = mesh.indices[3 * k + uint32_t(c)];
+      return vec3{mesh.x[q], mesh.y[q], mesh.z[q]};
+    };
+    const Triangle t{corner(0), corner(1), corner(2)};
+    const vec3 target = (t.a + t.b) * 0.5f;
+    const Ray ray{{rays.ox[i], rays.oy[i], rays.oz[i]}, target - vec3{rays.ox[i], rays.oy[i], rays.oz[i]}};
+    vec3 bary;
+    const RaycastResult r = raycast(t, ray, &bary);
+    h.add_u32(r.hit ? 1u : 0u), h.add_float(r.t), h.add_float(bary.x), h.add_float(bary.y), h.add_float(bary.z);
+  }
+  return h.digest();
 }
 
 uint64_t scene_rays_one_origin() {
@@ -771,7 +830,8 @@ const DetScene kScenes[] = {
     {"mesh_bvh", scene_mesh_bvh, 0x443954b2125dc999ull},
     {"camera_frustum", scene_camera_frustum, 0x246ff5bf8a6a766cull},
     {"scene_models", scene_models, 0xf0754d52193f4864ull},
-    {"rays_one_origin", scene_rays_one_origin, 0x1d92b6cc0b129904ull},
+    {"rays_one_origin", scene_rays_one_origin, 0x4ee4f0393c05adbaull},
+    {"mesh_slivers", scene_mesh_slivers, 0xd0a4ff278f7f59feull},
 #endif
 #if defined(GYRO_HAS_DYNAMICS)
     {"world_pile", scene_world_pile, 0x754cdfcd63378e65ull},
