@@ -69,23 +69,6 @@ MeshData soup_mesh(std::size_t n, SplitMix64& rng) {
   return m;
 }
 
-// n slivers (a third corner 1e-4 to 1e-3 of the length off the line of the other two), where
-// most hits take the watertight test's double path (ray_triangle_lanes.hpp).
-MeshData sliver_mesh(std::size_t n, SplitMix64& rng) {
-  MeshData m;
-  for (std::size_t t = 0; t < n; ++t) {
-    const vec3 c{float(10 * rng.u()), float(10 * rng.u()), float(10 * rng.u())};
-    const vec3 a = c + vec3{float(rng.u() - 0.5), float(rng.u() - 0.5), float(rng.u() - 0.5)} * 2.0f;
-    const vec3 b = c + vec3{float(rng.u() - 0.5), float(rng.u() - 0.5), float(rng.u() - 0.5)} * 2.0f;
-    const float f = float(rng.u()), w = float(1e-4 + 9e-4 * rng.u()) * length(b - a);
-    const vec3 off{float(rng.u() - 0.5), float(rng.u() - 0.5), float(rng.u() - 0.5)};
-    const uint32_t v = uint32_t(m.vertex_count());
-    m.add_vertex(a), m.add_vertex(b), m.add_vertex(a + (b - a) * f + off * w);
-    m.add_triangle(v, v + 1, v + 2);
-  }
-  return m;
-}
-
 // Rays of every kind: random, axis-parallel (zero direction components), aimed at vertices
 // and edge midpoints, starting on the surface, and with finite [tmin, tmax] windows. With
 // `origin`, every ray starts there (a lidar's or a camera's rays, which the batch walks in
@@ -208,7 +191,7 @@ TEST(TriangleMesh, SoupRaycastsEqualBruteForceAtEveryLevel) {
 // Rays from one origin (above the grid, inside the soup) walk in packets of eight.
 TEST(TriangleMesh, SliverRaycastsEqualBruteForceAtEveryLevel) {
   SplitMix64 rng(25);
-  const MeshData m = sliver_mesh(3000, rng);
+  const MeshData m = sliver_mesh(3000, rng, 10.0f, 2.0f);
   expect_matches_brute_force(m, 6000, 26, 0.01);
   const vec3 inside{5.0f, 5.0f, 5.0f};
   expect_matches_brute_force(m, 6000, 27, 0.01, &inside);

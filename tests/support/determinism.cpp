@@ -382,19 +382,8 @@ RaySet fan(const vec3& o, float az0, float az1, int columns, float el0, float el
 // hits with normals and barycentrics, and the scalar raycast's t and weights.
 uint64_t scene_mesh_slivers() {
   static const MeshData mesh = [] {
-    MeshData m;
     SplitMix64 rng(45);
-    for (int t = 0; t < 2000; ++t) {
-      const vec3 c{float(20 * rng.u()), float(20 * rng.u()), float(20 * rng.u())};
-      const vec3 a = c + vec3{float(rng.u() - 0.5), float(rng.u() - 0.5), float(rng.u() - 0.5)} * 4.0f;
-      const vec3 b = c + vec3{float(rng.u() - 0.5), float(rng.u() - 0.5), float(rng.u() - 0.5)} * 4.0f;
-      const float f = float(rng.u()), w = float(1e-4 + 9e-4 * rng.u()) * length(b - a);
-      const vec3 off{float(rng.u() - 0.5), float(rng.u() - 0.5), float(rng.u() - 0.5)};
-      const uint32_t v = uint32_t(m.vertex_count());
-      m.add_vertex(a), m.add_vertex(b), m.add_vertex(a + (b - a) * f + off * w);
-      m.add_triangle(v, v + 1, v + 2);
-    }
-    return m;
+    return sliver_mesh(2000, rng, 20.0f, 4.0f);
   }();
   static const RaySet rays = [] {
     RaySet r;

@@ -57,6 +57,21 @@ double r2_height(double x, double z) {
   return ((5 * std::sin(0.1 * x)) * std::cos(0.13 * z)) + (2 * std::sin((0.7 * x) + (0.3 * z)));
 }
 
+MeshData sliver_mesh(std::size_t n, SplitMix64& rng, float box, float spread) {
+  MeshData m;
+  for (std::size_t t = 0; t < n; ++t) {
+    const vec3 c{float(box * rng.u()), float(box * rng.u()), float(box * rng.u())};
+    const vec3 a = c + vec3{float(rng.u() - 0.5), float(rng.u() - 0.5), float(rng.u() - 0.5)} * spread;
+    const vec3 b = c + vec3{float(rng.u() - 0.5), float(rng.u() - 0.5), float(rng.u() - 0.5)} * spread;
+    const float f = float(rng.u()), w = float(1e-4 + 9e-4 * rng.u()) * length(b - a);
+    const vec3 off{float(rng.u() - 0.5), float(rng.u() - 0.5), float(rng.u() - 0.5)};
+    const uint32_t v = uint32_t(m.vertex_count());
+    m.add_vertex(a), m.add_vertex(b), m.add_vertex(a + (b - a) * f + off * w);
+    m.add_triangle(v, v + 1, v + 2);
+  }
+  return m;
+}
+
 MeshData r2_mesh() {
   constexpr uint32_t n = kR2GridVertices;
   MeshData m;

@@ -100,6 +100,10 @@ MeshData r2_mesh();
 double r2_height(double x, double z);
 /// R2 rays: seed 3, from (ox, 20, oz) towards (tx, -10, tz); every one hits the terrain.
 RaySet r2_rays(std::size_t count = 1000000);
+/// n slivers: corners a and b around a centre drawn in [0, box]^3 (each coordinate within
+/// spread / 2 of it), the third corner on segment ab moved off it by 1e-4 to 1e-3 of |b - a|:
+/// most hits take the watertight test's double path (ray_triangle_lanes.hpp).
+MeshData sliver_mesh(std::size_t n, SplitMix64& rng, float box, float spread);
 /// fnv1a64 over x, y, z per vertex / over the uint32 indices, as BENCHMARKS.md hashes them.
 uint64_t mesh_vertices_fnv(const MeshData& mesh);
 uint64_t mesh_indices_fnv(const MeshData& mesh);
