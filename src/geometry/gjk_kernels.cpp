@@ -123,8 +123,13 @@ inline void start(const ConvexBoxPairs& p, std::size_t i, std::size_t k, const B
   store(w.lambda[3] + k, L(0.0f));
 }
 
-// One GJK iteration (the body of gjk_typed's loop) for the pairs in slots [j, j + width).
-template <class L> inline void round(std::size_t j, const BoxGjkParams& prm, BoxGjkWork& w) {
+// Lane k holds k, for the live-slot mask of a round's last, partial vector.
+alignas(64) constexpr float kLaneIndex[16] = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15};
+
+// One GJK iteration (the body of gjk_typed's loop) for the pairs in slots [j, j + width);
+// only slots below `active` run: the lanes past it compute on stale slots, and their
+// stores land past the slots pack() reads.
+template <class L> inline void round(std::size_t j, std::size_t active, const BoxGjkParams& prm, BoxGjkWork& w) {
   const V3<L> ha = ld3<L>(w.ha, j);
   L rot[9], e[9];
   for (int q = 0; q < 9; ++q) rot[q] = load<L>(w.rot[q] + j);
@@ -132,8 +137,9 @@ template <class L> inline void round(std::size_t j, const BoxGjkParams& prm, Box
   const V3<L> pb0 = ld3<L>(w.pos, j);
   V3<L> A[4], B[4], W[4];
   L n = load<L>(w.n + j);
+  const auto live = load<L>(kLaneIndex) < L(float(active - j));
   const auto n1 = n == L(1.0f), n2 = n == L(2.0f), n3 = n == L(3.0f);
-  const int top = any(n3) ? 3 : (any(n2) ? 2 : 1);  // positions that may hold simplex points
+  const int top = any(live && n3) ? 3 : (any(live && n2) ? 2 : 1);  // positions that may hold simplex points
   for (int q = 0; q < top; ++q) A[q] = ld3<L>(w.a[q], j), B[q] = ld3<L>(w.b[q], j), W[q] = A[q] - B[q];
   V3<L> v = ld3<L>(w.v, j);
   L vv = load<L>(w.vv + j), it = load<L>(w.it + j);
@@ -141,7 +147,7 @@ template <class L> inline void round(std::size_t j, const BoxGjkParams& prm, Box
 
   const auto enclosed0 = vv == L(0.0f);
   const auto limit0 = !enclosed0 && (it >= L(float(prm.max_iterations)));
-  const auto run = !enclosed0 && !limit0;
+  const auto run = live && !enclosed0 && !limit0;
   // Supports along d = -v: A's core_support<box>, B's CoreB<box> (signs as selects).
   const V3<L> d = -v;
   const V3<L> pa{select(d.x >= L(0.0f), ha.x, -ha.x), select(d.y >= L(0.0f), ha.y, -ha.y),
@@ -402,8 +408,13 @@ GYRO_FLATTEN void box_gjk(const ConvexBoxPairs& p, std::size_t begin, std::size_
   const std::size_t count = end - begin;
   for (std::size_t k = 0; k < count; ++k) w.pair[k] = uint32_t(k);
   std::size_t active = pack(w, count, prm.verdict_only, out);
+  // A round's last vector runs with its lanes past `active` masked, not lane by lane: one
+  // lane of the float instantiation computing every branch cost about half a full vector
+  // (AVX2, callgrind), and AVX-512 leaves up to 15 such slots per round.
+  constexpr std::size_t width = width_v<Wide>;
+  static_assert(BoxGjkWork::kMax % width == 0 && width <= 16, "rounds run whole vectors");
   while (active > 0) {
-    for_lanes(0, active, [&](auto tag, std::size_t j) { round<decltype(tag)>(j, prm, w); });
+    for (std::size_t j = 0; j < active; j += width) round<Wide>(j, active, prm, w);
     active = pack(w, active, prm.verdict_only, out);
   }
   if (!prm.verdict_only)
