@@ -708,6 +708,79 @@ uint64_t scene_world_pyramids() {
   return h.digest();
 }
 
+void add_result(detail::StateHasher& h, const ConvexResult& r) {
+  h.add_u32(uint32_t(r.status)), h.add_float(r.distance), h.add_u32(r.iterations);
+  for (const vec3* v : {&r.normal, &r.point_a, &r.point_b}) h.add_float(v->x), h.add_float(v->y), h.add_float(v->z);
+}
+
+// The convex pair queries: N1 box pairs through the batches (GJK over lanes, EPA, the
+// scalar fallback for the invalid and out-of-range pairs below), and every shape type
+// against every other through GJK and EPA one by one.
+uint64_t scene_convex_pairs() {
+  detail::StateHasher h;
+  static const BoxPairs boxes = [] {
+    BoxPairs p = n1_pairs(3000 + 13);
+    p.a.hx[0] = -1.0f, p.b.cy[1] = __builtin_nanf(""), p.a.cx[2] = p.b.cx[2] = 3e37f, p.b.r[0][3] = 5.0f;
+    for (std::size_t i : {4, 5}) {  // faces touching exactly, and one box inside the other
+      for (BoxSet* s : {&p.a, &p.b}) {
+        s->cx[i] = s->cy[i] = s->cz[i] = 0.0f, s->hx[i] = s->hy[i] = s->hz[i] = 1.0f;
+        for (int e = 0; e < 9; ++e) s->r[e][i] = e % 4 == 0 ? 1.0f : 0.0f;
+      }
+    }
+    p.b.cx[4] = 2.0f, p.b.hx[5] = p.b.hy[5] = p.b.hz[5] = 0.5f;
+    return p;
+  }();
+  const std::size_t n = boxes.a.size();
+  ConvexBoxPairs pairs;
+  const auto fill = [](const BoxSet& s, const float* (&c)[3], const float* (&hf)[3], const float* (&r)[9]) {
+    c[0] = s.cx.data(), c[1] = s.cy.data(), c[2] = s.cz.data();
+    hf[0] = s.hx.data(), hf[1] = s.hy.data(), hf[2] = s.hz.data();
+    for (int k = 0; k < 3; ++k)
+      for (int col = 0; col < 3; ++col) r[3 * k + col] = s.r[3 * col + k].data();
+  };
+  fill(boxes.a, pairs.a_center, pairs.a_half, pairs.a_rot), fill(boxes.b, pairs.b_center, pairs.b_half, pairs.b_rot);
+  std::vector<ConvexStatus> verdict(n);
+  std::vector<ConvexResult> res(n);
+  convex_intersect_batch(pairs, n, verdict.data());
+  for (ConvexStatus st : verdict) h.add_u32(uint32_t(st));
+  ConvexQueryOptions no_gap;
+  no_gap.separated_distance = false;
+  for (int q = 0; q < 4; ++q) {
+    if (q == 0) convex_intersect_batch(pairs, n, res.data());
+    else if (q == 1) convex_distance_batch(pairs, n, res.data());
+    else convex_penetration_batch(pairs, n, res.data(), q == 2 ? ConvexQueryOptions{} : no_gap);
+    for (const ConvexResult& r : res) add_result(h, r);
+  }
+  // Every pair of the six shape types, 40 random poses each, half of them overlapping.
+  static const std::vector<vec3> cloud = [] {
+    SplitMix64 r(404);
+    std::vector<vec3> v;
+    for (int i = 0; i < 14; ++i) v.push_back({float(r.u()) - 0.5f, 0.6f * float(r.u()) - 0.3f, float(r.u()) - 0.5f});
+    return v;
+  }();
+  ConvexShape shape[6];
+  if (make_sphere(0.4f, shape[0]) != Status::ok || make_box({0.5f, 0.02f, 0.3f}, shape[1]) != Status::ok ||
+      make_capsule(0.2f, 0.4f, shape[2]) != Status::ok || make_cylinder(0.3f, 0.25f, shape[3]) != Status::ok ||
+      make_triangle({-0.5f, 0.0f, -0.3f}, {0.5f, 0.0f, -0.3f}, {0.0f, 0.0f, 0.6f}, shape[4]) != Status::ok ||
+      make_convex_points(cloud.data(), cloud.size(), shape[5]) != Status::ok)
+    return 0;
+  SplitMix64 rng(405);
+  for (int ta = 0; ta < 6; ++ta)
+    for (int tb = 0; tb < 6; ++tb)
+      for (int k = 0; k < 40; ++k) {
+        ConvexPose pa, pb;
+        pa.rotation = random_rotation(rng), pb.rotation = random_rotation(rng);
+        const float x = float(rng.u()), y = float(rng.u()), z = float(rng.u());
+        pa.position = {x - 0.5f, y - 0.5f, z - 0.5f};
+        const float spread = k < 20 ? 0.5f : 2.0f;
+        const float u = float(rng.u()), v = float(rng.u()), w = float(rng.u());
+        pb.position = pa.position + vec3{spread * (u - 0.5f), spread * (v - 0.5f), spread * (w - 0.5f)};
+        add_result(h, convex_distance(shape[ta], pa, shape[tb], pb));
+        add_result(h, convex_penetration(shape[ta], pa, shape[tb], pb));
+      }
+  return h.digest();
+}
+
 // Capsules and hulls (cubes, prisms, random point clouds) with spheres and boxes on a plane,
 // a mesh ramp and each other, under both convex manifold models; a hull destroyed midway.
 uint64_t scene_convex_bodies() {
@@ -829,6 +902,7 @@ const DetScene kScenes[] = {
     {"world_particles", scene_world_particles, 0x8e3766db8d8855a1ull},
     {"soft_cloth", scene_soft_cloth, 0x4b131c88424dd139ull},
     {"convex_bodies", scene_convex_bodies, 0x45809748c4eecc2eull},
+    {"convex_pairs", scene_convex_pairs, 0xd3c41f302b3cfc01ull},
     {"world_pyramids", scene_world_pyramids, 0x9f3aafe4c55bf10dull},
     {"snapshot_restore", scene_snapshot_restore, 0x5a7ce78bef94a882ull},
 #endif
