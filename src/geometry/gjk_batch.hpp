@@ -47,7 +47,9 @@ struct BoxGjkWork {
   static constexpr std::size_t kMax = BoxGjkBlock::kMax;
   uint32_t pair[kMax];  // block index k of the pair in this slot
   float ha[3][kMax], hb[3][kMax], rot[9][kMax], pos[3][kMax], sep_sq[kMax], abs_sq[kMax];
-  float a[4][3][kMax], b[4][3][kMax], lambda[4][kMax], v[3][kMax], vv[kMax], n[kMax], it[kMax];
+  // The simplex: its points on A and B and their weights where results are formed, else
+  // (verdicts) only its points of A - B.
+  float a[4][3][kMax], b[4][3][kMax], lambda[4][kMax], w[4][3][kMax], v[3][kMax], vv[kMax], n[kMax], it[kMax];
   uint32_t state[kMax];  // after a round: 0 still running, else kDone | BoxGjkBlock flags << 1
 };
 
@@ -55,7 +57,10 @@ struct BoxGjkParams {
   float touch_tolerance = 1e-6f;
   uint32_t max_iterations = 64;
   bool boolean = true;  // GJK's early exit on a separating direction
-  bool verdict_only = true;  // convex_intersect: statuses only (else results are formed)
+  // convex_intersect: statuses only (else results are formed). The lanes then carry only the
+  // simplex's points of A - B, and a pair that ends enclosing the origin with fewer than four
+  // points (EPA's touching test needs the points on A and B) is left to the scalar query.
+  bool verdict_only = true;
   bool penetration = false;  // results as convex_penetration's (else convex_distance's)
 };
 

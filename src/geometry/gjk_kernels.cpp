@@ -116,9 +116,14 @@ inline void start(const ConvexBoxPairs& p, std::size_t i, std::size_t k, const B
     bc[c] = ((select(s0, e[c], -e[c]) + select(s1, e[3 + c], -e[3 + c])) + select(s2, e[6 + c], -e[6 + c])) + pos[c];
   const V3<L> b{bc[0], bc[1], bc[2]};
   const V3<L> v = a - b;
-  st3(w.a[0], k, a), st3(w.b[0], k, b), st3(w.v, k, v);
+  st3(w.v, k, v);
   store(w.vv + k, dot(v, v));
   store(w.n + k, L(1.0f)), store(w.it + k, L(0.0f));
+  if (prm.verdict_only) {
+    st3(w.w[0], k, v);
+    return;
+  }
+  st3(w.a[0], k, a), st3(w.b[0], k, b);
   store(w.lambda[0] + k, L(1.0f)), store(w.lambda[1] + k, L(0.0f)), store(w.lambda[2] + k, L(0.0f));
   store(w.lambda[3] + k, L(0.0f));
 }
@@ -128,8 +133,10 @@ alignas(64) constexpr float kLaneIndex[16] = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 
 
 // One GJK iteration (the body of gjk_typed's loop) for the pairs in slots [j, j + width);
 // only slots below `active` run: the lanes past it compute on stale slots, and their
-// stores land past the slots pack() reads.
-template <class L> inline void round(std::size_t j, std::size_t active, const BoxGjkParams& prm, BoxGjkWork& w) {
+// stores land past the slots pack() reads. Witness: the simplex's points on A and B are
+// carried (results are formed), else only its points of A - B (verdicts).
+template <class L, bool Witness>
+inline void round(std::size_t j, std::size_t active, const BoxGjkParams& prm, BoxGjkWork& w) {
   const V3<L> ha = ld3<L>(w.ha, j);
   L rot[9], e[9];
   for (int q = 0; q < 9; ++q) rot[q] = load<L>(w.rot[q] + j);
@@ -140,7 +147,10 @@ template <class L> inline void round(std::size_t j, std::size_t active, const Bo
   const auto live = load<L>(kLaneIndex) < L(float(active - j));
   const auto n1 = n == L(1.0f), n2 = n == L(2.0f), n3 = n == L(3.0f);
   const int top = any(live && n3) ? 3 : (any(live && n2) ? 2 : 1);  // positions that may hold simplex points
-  for (int q = 0; q < top; ++q) A[q] = ld3<L>(w.a[q], j), B[q] = ld3<L>(w.b[q], j), W[q] = A[q] - B[q];
+  for (int q = 0; q < top; ++q) {
+    if constexpr (Witness) A[q] = ld3<L>(w.a[q], j), B[q] = ld3<L>(w.b[q], j), W[q] = A[q] - B[q];
+    else W[q] = ld3<L>(w.w[q], j);
+  }
   V3<L> v = ld3<L>(w.v, j);
   L vv = load<L>(w.vv + j), it = load<L>(w.it + j);
   const L sep_sq = load<L>(w.sep_sq + j), abs_sq = load<L>(w.abs_sq + j);
@@ -173,8 +183,12 @@ template <class L> inline void round(std::size_t j, std::size_t active, const Bo
   // The new point at position n.
   for (int q = 1; q <= top; ++q) {
     const auto here = n == L(float(q));
-    if (q == top) A[q] = pa, B[q] = pb, W[q] = sw;
-    else A[q] = vselect(here, pa, A[q]), B[q] = vselect(here, pb, B[q]), W[q] = vselect(here, sw, W[q]);
+    if constexpr (Witness) {
+      if (q == top) A[q] = pa, B[q] = pb, W[q] = sw;
+      else A[q] = vselect(here, pa, A[q]), B[q] = vselect(here, pb, B[q]), W[q] = vselect(here, sw, W[q]);
+    } else {
+      W[q] = q == top ? sw : vselect(here, sw, W[q]);
+    }
   }
   L wv[4];
   for (int q = 0; q <= top; ++q) wv[q] = dot(W[q], W[q]);
@@ -191,19 +205,27 @@ template <class L> inline void round(std::size_t j, std::size_t active, const Bo
   };
   if (any(progress)) {
     const L idx[3] = {r.i0, r.i1, r.i2};
-    V3<L> na[3], nb[3];
-    for (int q = 0; q < 3; ++q) na[q] = pick(A, idx[q]), nb[q] = pick(B, idx[q]);
     for (int q = 0; q < 3; ++q) {
       if (q > top) break;  // a kept position never exceeds the points there were
-      st3(w.a[q], j, vselect(progress, na[q], A[q])), st3(w.b[q], j, vselect(progress, nb[q], B[q]));
+      if constexpr (Witness) {
+        st3(w.a[q], j, vselect(progress, pick(A, idx[q]), A[q]));
+        st3(w.b[q], j, vselect(progress, pick(B, idx[q]), B[q]));
+      } else {
+        st3(w.w[q], j, vselect(progress, pick(W, idx[q]), W[q]));
+      }
     }
   }
-  if (top == 3 && any(full)) st3(w.a[3], j, A[3]), st3(w.b[3], j, B[3]);  // the tetrahedron stays in place
+  if (top == 3 && any(full)) {  // the tetrahedron stays in place
+    if constexpr (Witness) st3(w.a[3], j, A[3]), st3(w.b[3], j, B[3]);
+    else st3(w.w[3], j, W[3]);
+  }
   const auto upd = progress || full;
-  store(w.lambda[0] + j, select(upd, r.l0, load<L>(w.lambda[0] + j)));
-  store(w.lambda[1] + j, select(upd, r.l1, load<L>(w.lambda[1] + j)));
-  store(w.lambda[2] + j, select(upd, r.l2, load<L>(w.lambda[2] + j)));
-  store(w.lambda[3] + j, select(upd, r.l3, load<L>(w.lambda[3] + j)));
+  if constexpr (Witness) {
+    store(w.lambda[0] + j, select(upd, r.l0, load<L>(w.lambda[0] + j)));
+    store(w.lambda[1] + j, select(upd, r.l1, load<L>(w.lambda[1] + j)));
+    store(w.lambda[2] + j, select(upd, r.l2, load<L>(w.lambda[2] + j)));
+    store(w.lambda[3] + j, select(upd, r.l3, load<L>(w.lambda[3] + j)));
+  }
   n = select(upd, r.n, n);
   store(w.n + j, n);
   st3(w.v, j, vselect(upd, r.v, v));
@@ -219,9 +241,9 @@ template <class L> inline void round(std::size_t j, std::size_t active, const Bo
   store_bits(w.state + j, st);
 }
 
-// Moves a finished slot's state to its pair's outcome.
-// For intersect verdicts only a pair enclosing the origin without a full tetrahedron (EPA's
-// touching test) needs its simplex.
+// Moves a finished slot's state to its pair's outcome. Verdicts need no simplex but where
+// the origin is enclosed by fewer than four points (EPA's touching test): the lanes did not
+// keep the points on A and B that test needs, so the pair goes to the scalar query.
 void finish_slot(const BoxGjkWork& w, std::size_t j, bool verdict_only, BoxGjkBlock& out) {
   const std::size_t k = w.pair[j];
   const uint32_t n = uint32_t(w.n[j]), flags = w.state[j] >> 1;
@@ -231,21 +253,29 @@ void finish_slot(const BoxGjkWork& w, std::size_t j, bool verdict_only, BoxGjkBl
                  : (flags & BoxGjkBlock::kLimit) != 0  ? 2.0f
                  : (flags & BoxGjkBlock::kEarly) != 0  ? 3.0f
                                                        : 1.0f;
-  if (verdict_only && (flags & (BoxGjkBlock::kEnclosed | BoxGjkBlock::kFull)) != BoxGjkBlock::kEnclosed) return;
+  if (verdict_only) {
+    if ((flags & (BoxGjkBlock::kEnclosed | BoxGjkBlock::kFull)) == BoxGjkBlock::kEnclosed) out.code[k] = BoxGjkBlock::kScalar;
+    return;
+  }
   for (uint32_t q = 0; q < n; ++q)
     for (int c = 0; c < 3; ++c) out.a[q][c][k] = w.a[q][c][j], out.b[q][c][k] = w.b[q][c][j];
   for (int q = 0; q < 4; ++q) out.lambda[q][k] = w.lambda[q][j];
   for (int c = 0; c < 3; ++c) out.v[c][k] = w.v[c][j];
 }
 
-// Calls f(column) for every per-slot float column of the running state.
-template <class F> inline void for_each_column(BoxGjkWork& w, F&& f) {
+// Calls f(column) for every per-slot float column of the running state (verdicts: the
+// points of A - B in place of those on A and B and their weights).
+template <bool VerdictOnly, class F> inline void for_each_column(BoxGjkWork& w, F&& f) {
   for (int c = 0; c < 3; ++c) f(w.ha[c]), f(w.hb[c]), f(w.pos[c]), f(w.v[c]);
   for (int q = 0; q < 9; ++q) f(w.rot[q]);
   f(w.sep_sq), f(w.abs_sq), f(w.vv), f(w.n), f(w.it);
   for (int q = 0; q < 4; ++q) {
-    f(w.lambda[q]);
-    for (int c = 0; c < 3; ++c) f(w.a[q][c]), f(w.b[q][c]);
+    if constexpr (VerdictOnly) {
+      for (int c = 0; c < 3; ++c) f(w.w[q][c]);
+    } else {
+      f(w.lambda[q]);
+      for (int c = 0; c < 3; ++c) f(w.a[q][c]), f(w.b[q][c]);
+    }
   }
 }
 
@@ -257,7 +287,8 @@ inline void finish_if_valid(const BoxGjkWork& w, std::size_t j, bool verdict_onl
 #if defined(GYRO_ARCH_AVX512)
 // Finishes the slots whose state says done and packs the others to the front, 16 slots at a
 // time with AVX-512's compress-store (the order of the kept slots is kept).
-std::size_t pack(BoxGjkWork& w, std::size_t count, bool verdict_only, BoxGjkBlock& out) {
+template <bool VerdictOnly> std::size_t pack(BoxGjkWork& w, std::size_t count, BoxGjkBlock& out) {
+  constexpr bool verdict_only = VerdictOnly;
   std::size_t m = 0;
   for (std::size_t j = 0; j < count; j += 16) {
     const std::size_t len = count - j < 16 ? count - j : 16;
@@ -270,7 +301,7 @@ std::size_t pack(BoxGjkWork& w, std::size_t count, bool verdict_only, BoxGjkBloc
     if (m != j || kept != len) {
       const __m512i pair = _mm512_maskz_loadu_epi32(valid, w.pair + j);
       _mm512_mask_compressstoreu_epi32(w.pair + m, keep, pair);
-      for_each_column(w, [&](float* col) {
+      for_each_column<VerdictOnly>(w, [&](float* col) {
         _mm512_mask_compressstoreu_ps(col + m, keep, _mm512_maskz_loadu_ps(valid, col + j));
       });
     }
@@ -296,7 +327,8 @@ constexpr auto kCompress = [] {
 // pack() as the AVX-512 one, eight slots at a time: the kept lanes are permuted to the front
 // and all eight stored at m; the lanes past the kept ones land on slots that a later block
 // overwrites or that are past the end (m + 8 <= j + 8, so never on a slot not yet read).
-std::size_t pack(BoxGjkWork& w, std::size_t count, bool verdict_only, BoxGjkBlock& out) {
+template <bool VerdictOnly> std::size_t pack(BoxGjkWork& w, std::size_t count, BoxGjkBlock& out) {
+  constexpr bool verdict_only = VerdictOnly;
   std::size_t m = 0;
   const __m256i shifts = _mm256_setr_epi32(0, 4, 8, 12, 16, 20, 24, 28);
   for (std::size_t j = 0; j < count; j += 8) {
@@ -314,7 +346,7 @@ std::size_t pack(BoxGjkWork& w, std::size_t count, bool verdict_only, BoxGjkBloc
       const __m256i perm = _mm256_srlv_epi32(_mm256_set1_epi32(int(kCompress[keep])), shifts);
       const __m256i pair = _mm256_maskload_epi32(reinterpret_cast<const int*>(w.pair + j), live);
       _mm256_storeu_si256(reinterpret_cast<__m256i*>(w.pair + m), _mm256_permutevar8x32_epi32(pair, perm));
-      for_each_column(w, [&](float* col) {
+      for_each_column<VerdictOnly>(w, [&](float* col) {
         _mm256_storeu_ps(col + m, _mm256_permutevar8x32_ps(_mm256_maskload_ps(col + j, live), perm));
       });
     }
@@ -324,20 +356,21 @@ std::size_t pack(BoxGjkWork& w, std::size_t count, bool verdict_only, BoxGjkBloc
 }
 #else
 // Copies slot j's running state to slot m (m < j).
-void move_slot(BoxGjkWork& w, std::size_t j, std::size_t m) {
+template <bool VerdictOnly> void move_slot(BoxGjkWork& w, std::size_t j, std::size_t m) {
   w.pair[m] = w.pair[j];
-  for_each_column(w, [&](float* col) { col[m] = col[j]; });
+  for_each_column<VerdictOnly>(w, [&](float* col) { col[m] = col[j]; });
 }
 
 // Finishes the slots whose state says done and packs the others to the front.
-std::size_t pack(BoxGjkWork& w, std::size_t count, bool verdict_only, BoxGjkBlock& out) {
+template <bool VerdictOnly> std::size_t pack(BoxGjkWork& w, std::size_t count, BoxGjkBlock& out) {
+  constexpr bool verdict_only = VerdictOnly;
   std::size_t m = 0;
   for (std::size_t j = 0; j < count; ++j) {
     if (w.state[j] != 0) {
       finish_if_valid(w, j, verdict_only, out);
       continue;
     }
-    if (m != j) move_slot(w, j, m);
+    if (m != j) move_slot<VerdictOnly>(w, j, m);
     ++m;
   }
   return m;
@@ -400,25 +433,33 @@ inline void conclude_apart(const ConvexBoxPairs& p, std::size_t i, std::size_t k
   store(out.done + k, select((apart > L(0.5f)) && (acc == zero), L(1.0f), zero));
 }
 
-}  // namespace
-
-GYRO_FLATTEN void box_gjk(const ConvexBoxPairs& p, std::size_t begin, std::size_t end, const BoxGjkParams& prm,
-                          BoxGjkBlock& out, BoxGjkWork& w) {
+// GJK over the block's pairs: every pair's first support point, then rounds until none runs.
+template <bool VerdictOnly>
+inline void run(const ConvexBoxPairs& p, std::size_t begin, std::size_t end, const BoxGjkParams& prm, BoxGjkBlock& out,
+                BoxGjkWork& w) {
   for_lanes(begin, end, [&](auto tag, std::size_t i) { start<decltype(tag)>(p, i, i - begin, prm, out, w); });
   const std::size_t count = end - begin;
   for (std::size_t k = 0; k < count; ++k) w.pair[k] = uint32_t(k);
-  std::size_t active = pack(w, count, prm.verdict_only, out);
+  std::size_t active = pack<VerdictOnly>(w, count, out);
   // A round's last vector runs with its lanes past `active` masked, not lane by lane: one
   // lane of the float instantiation computing every branch cost about half a full vector
   // (AVX2, callgrind), and AVX-512 leaves up to 15 such slots per round.
   constexpr std::size_t width = width_v<Wide>;
   static_assert(BoxGjkWork::kMax % width == 0 && width <= 16, "rounds run whole vectors");
   while (active > 0) {
-    for (std::size_t j = 0; j < active; j += width) round<Wide>(j, active, prm, w);
-    active = pack(w, active, prm.verdict_only, out);
+    for (std::size_t j = 0; j < active; j += width) round<Wide, !VerdictOnly>(j, active, prm, w);
+    active = pack<VerdictOnly>(w, active, out);
   }
-  if (!prm.verdict_only)
+  if constexpr (!VerdictOnly)
     for_lanes(begin, end, [&](auto tag, std::size_t i) { conclude_apart<decltype(tag)>(p, i, i - begin, prm, out); });
+}
+
+}  // namespace
+
+GYRO_FLATTEN void box_gjk(const ConvexBoxPairs& p, std::size_t begin, std::size_t end, const BoxGjkParams& prm,
+                          BoxGjkBlock& out, BoxGjkWork& w) {
+  if (prm.verdict_only) run<true>(p, begin, end, prm, out, w);
+  else run<false>(p, begin, end, prm, out, w);
 }
 
 }  // namespace gyro::GYRO_ARCH_NS
