@@ -8,6 +8,14 @@
 // the lower axis, the lower bin, the earlier child); partitions are stable and the median
 // fallback sorts by (centroid, index). The same mesh always gives the same bytes.
 //
+// Parallel (core/parallel's fixed chunks, so any thread count gives the same bytes): the
+// binary tree's top is built on the calling thread, its nodes' boxes and bins gathered in
+// chunks in parallel (per-chunk bins merged: min, max and counts, exact in any order); the
+// subtrees below kTaskPrims primitives are built in parallel, each into its own node list
+// over its own range of the primitive order, and linked in afterwards. A subtree's shape is
+// a function of its range alone, and the wide tree is emitted from the binary tree's shape,
+// not from where its nodes were stored.
+//
 // The SAH cost counts 4-wide leaf blocks, not triangles (a block of 1 to 4 triangles costs
 // one lane test), so a node of at most 4 triangles is always a leaf.
 //
@@ -15,6 +23,8 @@
 // BVH over arbitrary boxes (leaves hold item indices; the scene's top level). Only the
 // primitive boxes and the leaf writer differ, so both get the same tree for the same boxes.
 #include "spatial/bvh.hpp"
+
+#include "core/parallel.hpp"
 
 #include <algorithm>
 #include <array>
@@ -24,6 +34,11 @@ namespace {
 
 constexpr int kBins = 32;
 constexpr uint32_t kLeafSize = 4;
+// Subtrees of at most this many primitives are built as parallel tasks (R2's 522k
+// triangles make about 200); nodes of at least kChunkPrims gather their boxes and bins in
+// parallel chunks of that size.
+constexpr uint32_t kTaskPrims = 4096;
+constexpr uint32_t kChunkPrims = 4096;
 constexpr float kInf = __builtin_inff();
 
 struct Box {
@@ -47,6 +62,22 @@ struct BinaryNode {
   Box box;
   uint32_t left = 0, right = 0;  // interior
   uint32_t first = 0, count = 0;  // leaf when count > 0
+};
+
+// A node's bins along the three axes.
+struct Bins {
+  Box box[3][kBins];
+  uint32_t count[3][kBins] = {};
+  void merge(const Bins& o) {
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < kBins; ++b) box[a][b].grow(o.box[a][b]), count[a][b] += o.count[a][b];
+  }
+};
+
+// A subtree left for the parallel phase: its range, its depth, and the node standing for it.
+struct Task {
+  uint32_t first, count, node;
+  std::size_t depth;
 };
 
 template <class Node> constexpr int width_of = int(sizeof(Node::child) / sizeof(uint32_t));
@@ -80,7 +111,9 @@ class Builder {
 
   // Out is Bvh8 or BoxBvh8; leaf(out, b) appends binary leaf b's block and returns its code.
   template <class Out, class Leaf> Out run(Leaf&& leaf) {
-    const uint32_t root = build(0, uint32_t(order_.size()), 0);
+    std::vector<Task> tasks;
+    const uint32_t root = build(nodes_, 0, uint32_t(order_.size()), 0, &tasks);
+    build_tasks(tasks);
     Out out;
     out.nodes.reserve(nodes_.size() / 2 + 1);
     out.leaves.reserve(order_.size() / 2 + 1);
@@ -114,26 +147,77 @@ class Builder {
   double root_area_ = 1.0;
   double sah_ = 0.0;
 
-  uint32_t build(uint32_t first, uint32_t count, std::size_t depth) {
-    Box box, cbox;
-    for (uint32_t i = first; i < first + count; ++i) {
+  // Runs f(begin, end) over [first, first + count) in chunks of kChunkPrims, in parallel
+  // where there are several, each with its own accumulator (acc[k] for chunk k).
+  template <class Acc, class F> void chunked(uint32_t first, uint32_t count, std::vector<Acc>& acc, F&& f) {
+    const std::size_t chunks = (std::size_t(count) + kChunkPrims - 1) / kChunkPrims;
+    acc.assign(chunks, Acc{});
+    const auto body = [&](std::size_t b, std::size_t e) {
+      for (std::size_t k = b; k < e; ++k) {
+        const uint32_t lo = first + uint32_t(k) * kChunkPrims;
+        f(acc[k], lo, std::min(first + count, lo + kChunkPrims));
+      }
+    };
+    if (chunks > 1) parallel_for(chunks, 1, body);
+    else body(0, chunks);
+  }
+
+  void node_boxes(uint32_t first, uint32_t end, Box& box, Box& cbox) const {
+    for (uint32_t i = first; i < end; ++i) {
       box.grow(prim_[order_[i]]);
       cbox.grow(centroid_[order_[i]].data());
     }
-    const uint32_t index = uint32_t(nodes_.size());
-    nodes_.push_back({box, 0, 0, 0, 0});
+  }
+
+  // Builds the subtree over order_[first, first + count) into `nodes`; returns its root.
+  // With `defer`, subtrees of at most kTaskPrims primitives are not built but listed there,
+  // each standing as a node of its box with no children yet.
+  uint32_t build(std::vector<BinaryNode>& nodes, uint32_t first, uint32_t count, std::size_t depth,
+                 std::vector<Task>* defer) {
+    Box box, cbox;
+    if (count >= 2 * kChunkPrims) {
+      std::vector<std::array<Box, 2>> parts;
+      chunked(first, count, parts, [&](std::array<Box, 2>& acc, uint32_t b, uint32_t e) { node_boxes(b, e, acc[0], acc[1]); });
+      for (const auto& part : parts) box.grow(part[0]), cbox.grow(part[1]);
+    } else {
+      node_boxes(first, first + count, box, cbox);
+    }
+    const uint32_t index = uint32_t(nodes.size());
+    nodes.push_back({box, 0, 0, 0, 0});
     if (count <= kLeafSize) {
-      nodes_[index].first = first, nodes_[index].count = count;
+      nodes[index].first = first, nodes[index].count = count;
+      return index;
+    }
+    if (defer && count <= kTaskPrims) {
+      defer->push_back({first, count, index, depth});
       return index;
     }
     uint32_t left_count = 0;
     // Past this depth only median splits, which end within log2(count) <= 31 more levels.
     if (depth + 33 < kBvhMaxDepth) left_count = sah_split(first, count, cbox);
     if (left_count == 0 || left_count == count) left_count = median_split(first, count, cbox);
-    const uint32_t l = build(first, left_count, depth + 1);
-    const uint32_t r = build(first + left_count, count - left_count, depth + 1);
-    nodes_[index].left = l, nodes_[index].right = r;
+    const uint32_t l = build(nodes, first, left_count, depth + 1, defer);
+    const uint32_t r = build(nodes, first + left_count, count - left_count, depth + 1, defer);
+    nodes[index].left = l, nodes[index].right = r;
     return index;
+  }
+
+  // Builds the deferred subtrees in parallel, then appends each one's nodes (its root in
+  // place of the node standing for it, its other indices moved past the nodes before it).
+  void build_tasks(const std::vector<Task>& tasks) {
+    std::vector<std::vector<BinaryNode>> sub(tasks.size());
+    parallel_for(tasks.size(), 1, [&](std::size_t b, std::size_t e) {
+      for (std::size_t t = b; t < e; ++t) build(sub[t], tasks[t].first, tasks[t].count, tasks[t].depth, nullptr);
+    });
+    for (std::size_t t = 0; t < tasks.size(); ++t) {
+      const uint32_t base = uint32_t(nodes_.size()) - 1;  // local index 1 lands at nodes_.size()
+      const auto moved = [&](BinaryNode n) {
+        if (n.count == 0) n.left += base, n.right += base;
+        return n;
+      };
+      nodes_[tasks[t].node] = moved(sub[t][0]);
+      for (std::size_t k = 1; k < sub[t].size(); ++k) nodes_.push_back(moved(sub[t][k]));
+    }
   }
 
   // Clamped as a float before the conversion: a float past INT_MAX (or NaN) has no int.
@@ -155,48 +239,69 @@ class Builder {
       // A subnormal extent overflows the scale: as good as flat, left to the median split.
       if (!(scale[axis] < kInf)) scale[axis] = 0.0f;
     }
-    Box bin_box[3][kBins];
-    uint32_t bin_count[3][kBins] = {};
-    for (uint32_t i = first; i < first + count; ++i) {
-      const uint32_t p = order_[i];
-      for (int axis = 0; axis < 3; ++axis) {
-        const int b = bin_of(centroid_[p][axis], lo[axis], scale[axis]);
-        bin_box[axis][b].grow(prim_[p]);
-        ++bin_count[axis][b];
+    const auto bin = [&](Bins& bins, uint32_t b0, uint32_t e0) {
+      for (uint32_t i = b0; i < e0; ++i) {
+        const uint32_t p = order_[i];
+        for (int axis = 0; axis < 3; ++axis) {
+          const int b = bin_of(centroid_[p][axis], lo[axis], scale[axis]);
+          bins.box[axis][b].grow(prim_[p]);
+          ++bins.count[axis][b];
+        }
       }
+    };
+    Bins bins;
+    if (count >= 2 * kChunkPrims) {
+      std::vector<Bins> parts;
+      chunked(first, count, parts, bin);
+      for (const Bins& part : parts) bins.merge(part);
+    } else {
+      bin(bins, first, first + count);
     }
+    const auto& bin_box = bins.box;
+    const auto& bin_count = bins.count;
     double best_cost = kInf;
     int best_axis = -1, best_bin = 0;
     for (int axis = 0; axis < 3; ++axis) {
       if (scale[axis] == 0.0f) continue;
-      // Right-to-left sweep: the cost of everything right of each plane.
+      // Right-to-left sweep: the cost of everything right of each plane. An empty bin
+      // changes neither the box nor the count, so its plane costs what the plane before it
+      // costs, to the bit: it is not evaluated (most bins of the many small nodes are empty;
+      // the sweeps were a third of the build).
       double right_cost[kBins];
       Box acc;
       uint32_t n = 0;
+      double last = 0.0;  // an empty right side: area 0 times 0 blocks
       for (int b = kBins - 1; b > 0; --b) {
-        acc.grow(bin_box[axis][b]);
-        n += bin_count[axis][b];
-        right_cost[b] = acc.half_area() * blocks(n);
+        if (bin_count[axis][b] != 0) {
+          acc.grow(bin_box[axis][b]);
+          n += bin_count[axis][b];
+          last = acc.half_area() * blocks(n);
+        }
+        right_cost[b] = last;
       }
       acc = Box();
       n = 0;
+      // A plane after an empty bin repeats the plane before it, which the strict < below
+      // already preferred (or skipped, with the same n).
       for (int b = 0; b < kBins - 1; ++b) {
+        if (bin_count[axis][b] == 0) continue;
         acc.grow(bin_box[axis][b]);
         n += bin_count[axis][b];
-        if (n == 0 || n == count) continue;
+        if (n == count) break;
         const double cost = acc.half_area() * blocks(n) + right_cost[b + 1];
         if (cost < best_cost) best_cost = cost, best_axis = axis, best_bin = b;
       }
     }
     if (best_axis < 0) return 0;
     uint32_t* const range = order_.data() + first;
+    uint32_t* const spill = scratch_.data() + first;  // this range's own: subtrees run in parallel
     uint32_t left = 0, right = 0;
     for (uint32_t i = 0; i < count; ++i) {
       const uint32_t p = range[i];
       if (bin_of(centroid_[p][best_axis], lo[best_axis], scale[best_axis]) <= best_bin) range[left++] = p;
-      else scratch_[right++] = p;
+      else spill[right++] = p;
     }
-    std::copy(scratch_.data(), scratch_.data() + right, range + left);
+    std::copy(spill, spill + right, range + left);
     return left;
   }
 
