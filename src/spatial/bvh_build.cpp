@@ -34,9 +34,9 @@ namespace {
 
 constexpr int kBins = 32;
 constexpr uint32_t kLeafSize = 4;
-// Subtrees of at most this many primitives are built as parallel tasks (R2's 522k
-// triangles make about 200); nodes of at least kChunkPrims gather their boxes and bins in
-// parallel chunks of that size.
+// Subtrees of at most kTaskPrims primitives are built as parallel tasks (R2's 522k
+// triangles make 182); nodes of at least two chunks gather their boxes and bins in parallel
+// chunks of kChunkPrims (16384 measured no different on R2).
 constexpr uint32_t kTaskPrims = 4096;
 constexpr uint32_t kChunkPrims = 4096;
 constexpr float kInf = __builtin_inff();
