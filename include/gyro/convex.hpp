@@ -115,7 +115,12 @@ struct ConvexQueryOptions {
 };
 
 /// Boolean overlap by GJK: stops at the first separating axis or enclosing simplex. distance,
-/// normal and witnesses are those at the exit (exact only when converged).
+/// normal and witnesses are those at the exit (exact only when converged). Two boxes first
+/// try their six face normals: a pair separated along one (beyond the touching tolerance)
+/// stops there with iterations 0, reporting the support point of A - B along that normal
+/// (point_a and point_b its vertices or face points on A and B; distance its length, an upper
+/// bound of the gap). On random boxes that decides 95-98% of separated pairs, which GJK's
+/// first iteration decided 40-65% of. penetration with separated_distance = false does the same.
 ConvexResult convex_intersect(const ConvexShape& a, const ConvexPose& pa, const ConvexShape& b,
                               const ConvexPose& pb, const ConvexQueryOptions& options = {});
 /// Distance and closest points by GJK. Intersecting pairs report distance 0 (no EPA).

@@ -902,7 +902,7 @@ const DetScene kScenes[] = {
     {"world_particles", scene_world_particles, 0x8e3766db8d8855a1ull},
     {"soft_cloth", scene_soft_cloth, 0x4b131c88424dd139ull},
     {"convex_bodies", scene_convex_bodies, 0x45809748c4eecc2eull},
-    {"convex_pairs", scene_convex_pairs, 0xd3c41f302b3cfc01ull},
+    {"convex_pairs", scene_convex_pairs, 0xefaa1b2ba499c7bcull},
     {"world_pyramids", scene_world_pyramids, 0x9f3aafe4c55bf10dull},
     {"snapshot_restore", scene_snapshot_restore, 0x5a7ce78bef94a882ull},
 #endif
