@@ -212,15 +212,15 @@ inline float abs_bits(float x) { return std::bit_cast<float>(std::bit_cast<uint3
 
 // Boolean GJK's exit along a box pair's six face normals, tried before the loop: for axis L
 // (A's local axes e_k, then B's axes r_j, the rows of rot_b), the gap between the pair's
-// projections, gap = |centre distance along L| - (A's extent + B's extent), passes where GJK's
-// own early exit would (gap > 0 and gap^2 > threshold^2 * |L|^2: a separation beyond the
-// threshold). B's extent along r_j is the sum over i of h_i |r_i . r_j|, exact for any linear
-// B, so a pose that is not quite a rotation is still answered right. Returns the direction
-// towards B along the first axis that passes (the search direction GJK's first support point
-// is taken along), or false. On N1's random boxes 98% of separated pairs pass here; GJK's
-// first iteration found 65% of them, the others took up to 8 iterations (37% of all the
-// iterations of the intersect batch). box_gjk's start() computes the same, operation for
-// operation, in lanes.
+// projections, gap = |centre distance along L| - (A's extent + B's extent), is held to GJK's
+// own early-exit threshold (gap > 0 and gap^2 > threshold^2 * |L|^2). B's extent along r_j
+// is the sum over i of h_i |r_i . r_j|, exact for any linear B, so a pose that is not quite a
+// rotation is still answered right. True when an axis passes, with dir the direction towards
+// B along the first one (GJK's first support point is then taken along it); false leaves dir
+// alone. On N1's random boxes 98% of the separated pairs pass (a binary64 count: 163,300 of
+// 166,170); GJK's first iteration had settled 65%, the others taking up to 8 iterations (37%
+// of the intersect batch's iterations). box_gjk's start() computes the same gaps, operation
+// for operation, in lanes.
 bool box_face_probe(const PairFrame& f, float sep_sq, vec3& dir) {
   const vec3 ha = f.a->half_extents, hb = f.b->half_extents;
   const mat3& r = f.rot_b;
