@@ -15,6 +15,7 @@
 // index; no heap.
 #include "core/error.hpp"
 #include "core/validate.hpp"
+#include "geometry/box_face_lanes.hpp"
 #include "geometry/convex_support.hpp"
 #include "geometry/gjk_batch.hpp"
 #include "gyro/runtime.hpp"
@@ -205,54 +206,6 @@ template <ConvexType T> struct CoreB {
   }
 };
 
-// ---- box pairs: the faces' normals as separating axes ----
-
-// |x| with the sign bit cleared (what the lanes' abs() gives, -0 included).
-inline float abs_bits(float x) { return std::bit_cast<float>(std::bit_cast<uint32_t>(x) & 0x7fffffffu); }
-
-// Boolean GJK's exit along a box pair's six face normals, tried before the loop: for axis L
-// (A's local axes e_k, then B's axes r_j, the rows of rot_b), the gap between the pair's
-// projections, gap = |centre distance along L| - (A's extent + B's extent), is held to GJK's
-// own early-exit threshold (gap > 0 and gap^2 > threshold^2 * |L|^2). B's extent along r_j
-// is the sum over i of h_i |r_i . r_j|, exact for any linear B, so a pose that is not quite a
-// rotation is still answered right. True when an axis passes, with dir the direction towards
-// B along the first one (GJK's first support point is then taken along it); false leaves dir
-// alone. On N1's random boxes 98% of the separated pairs pass (a binary64 count: 163,300 of
-// 166,170); GJK's first iteration had settled 65%, the others taking up to 8 iterations (37%
-// of the intersect batch's iterations). box_gjk's start() computes the same gaps, operation
-// for operation, in lanes.
-bool box_face_probe(const PairFrame& f, float sep_sq, vec3& dir) {
-  const vec3 ha = f.a->half_extents, hb = f.b->half_extents;
-  const mat3& r = f.rot_b;
-  const vec3& p = f.pos_b;
-  float ar[3][3];
-  for (int j = 0; j < 3; ++j)
-    for (int k = 0; k < 3; ++k) ar[j][k] = abs_bits(r.m[j][k]);
-  for (int k = 0; k < 3; ++k) {
-    const float rb = (hb.x * ar[0][k] + hb.y * ar[1][k]) + hb.z * ar[2][k];
-    const float gap = abs_bits(p[k]) - (ha[k] + rb);
-    if (gap > 0.0f && gap * gap > sep_sq * 1.0f) {
-      dir = {};
-      dir[k] = p[k] >= 0.0f ? 1.0f : -1.0f;
-      return true;
-    }
-  }
-  const vec3 row[3] = {{r.m[0][0], r.m[0][1], r.m[0][2]}, {r.m[1][0], r.m[1][1], r.m[1][2]},
-                       {r.m[2][0], r.m[2][1], r.m[2][2]}};
-  for (int j = 0; j < 3; ++j) {
-    const float c = (p.x * row[j].x + p.y * row[j].y) + p.z * row[j].z;
-    const float ra = (ha.x * ar[j][0] + ha.y * ar[j][1]) + ha.z * ar[j][2];
-    const float rb = (hb.x * abs_bits(dot(row[0], row[j])) + hb.y * abs_bits(dot(row[1], row[j]))) +
-                     hb.z * abs_bits(dot(row[2], row[j]));
-    const float gap = abs_bits(c) - (ra + rb);
-    if (gap > 0.0f && gap * gap > sep_sq * dot(row[j], row[j])) {
-      dir = row[j] * (c >= 0.0f ? 1.0f : -1.0f);
-      return true;
-    }
-  }
-  return false;
-}
-
 // ---- the GJK loop ----
 
 struct GjkOut {
@@ -297,8 +250,16 @@ void gjk_typed(const PairFrame& pair, bool boolean, float sep_threshold, uint32_
   vec3 d0 = pair.pos_b;
   if (!(dot(d0, d0) > 0.0f)) d0 = {1.0f, 0.0f, 0.0f};
   bool face_axis = false;
-  if constexpr (TA == ConvexType::box && TB == ConvexType::box)
-    if (boolean) face_axis = box_face_probe(pair, sep_sq, d0);
+  if constexpr (TA == ConvexType::box && TB == ConvexType::box) {
+    if (boolean) {  // box_face_lanes.hpp, the float instantiation of box_gjk's
+      using Lane = GYRO_ARCH_NS::V3<float>;
+      const vec3 ha = pair.a->half_extents, hb = pair.b->half_extents;
+      const float pos[3] = {pair.pos_b.x, pair.pos_b.y, pair.pos_b.z};
+      Lane dir{d0.x, d0.y, d0.z};
+      face_axis = GYRO_ARCH_NS::box_face_probe(Lane{ha.x, ha.y, ha.z}, Lane{hb.x, hb.y, hb.z}, pair.rot_b.m, pos, sep_sq, dir);
+      d0 = {dir.x, dir.y, dir.z};
+    }
+  }
   slot[0].a = core_support<TA>(sa, d0);
   slot[0].b = support_b(d0);
   slot[0].w = slot[0].a - slot[0].b;

@@ -10,6 +10,7 @@
 // too (conclude_apart); gjk.cpp forms the rest. gjk.cpp does not call the scalar level's
 // instantiation for whole batches (one lane paying for every branch is slower than the
 // scalar loop); it serves the tails of the SIMD levels.
+#include "geometry/box_face_lanes.hpp"
 #include "geometry/gjk_batch.hpp"
 #include "geometry/gjk_lanes.hpp"
 
@@ -102,39 +103,11 @@ inline void start(const ConvexBoxPairs& p, std::size_t i, std::size_t k, const B
     for (int c = 0; c < 3; ++c) store(&w.rot[3 * r + c][k], rot[r][c]);
   for (int c = 0; c < 3; ++c) store(&w.pos[c][k], pos[c]);
   // The first support point (gjk_typed before its loop), along pos_b (+x if that is zero),
-  // or in boolean mode along the first face normal that separates (box_face_probe(): the
-  // same gaps by the same operations, the first passing axis taken).
+  // or in boolean mode along the first face normal that separates (box_face_lanes.hpp).
   V3<L> d0{pos[0], pos[1], pos[2]};
   d0 = vselect(!(dot(d0, d0) > L(0.0f)), V3<L>{L(1.0f), L(0.0f), L(0.0f)}, d0);
   auto face_axis = L(0.0f) > L(1.0f);
-  if (prm.boolean) {
-    L ar[3][3];
-    for (int j = 0; j < 3; ++j)
-      for (int c = 0; c < 3; ++c) ar[j][c] = abs(rot[j][c]);
-    const L hav[3] = {ha.x, ha.y, ha.z}, sep_sq_l = sep * sep;
-    const V3<L> row[3] = {{rot[0][0], rot[0][1], rot[0][2]}, {rot[1][0], rot[1][1], rot[1][2]},
-                          {rot[2][0], rot[2][1], rot[2][2]}};
-    V3<L> dir = d0;
-    // Axes in reverse, each taking over where it passes: the first passing one is kept.
-    for (int j = 2; j >= 0; --j) {
-      const L c = (pos[0] * row[j].x + pos[1] * row[j].y) + pos[2] * row[j].z;
-      const L ra = (ha.x * ar[j][0] + ha.y * ar[j][1]) + ha.z * ar[j][2];
-      const L rb = (hb.x * abs(dot(row[0], row[j])) + hb.y * abs(dot(row[1], row[j]))) + hb.z * abs(dot(row[2], row[j]));
-      const L gap = abs(c) - (ra + rb);
-      const auto pass = (gap > L(0.0f)) && (gap * gap > sep_sq_l * dot(row[j], row[j]));
-      dir = vselect(pass, row[j] * select(c >= L(0.0f), L(1.0f), L(-1.0f)), dir);
-      face_axis = face_axis || pass;
-    }
-    for (int k = 2; k >= 0; --k) {
-      const L rbk = (hb.x * ar[0][k] + hb.y * ar[1][k]) + hb.z * ar[2][k];
-      const L gap = abs(pos[k]) - (hav[k] + rbk);
-      const auto pass = (gap > L(0.0f)) && (gap * gap > sep_sq_l * L(1.0f));
-      const L sg = select(pos[k] >= L(0.0f), L(1.0f), L(-1.0f)), z(0.0f);
-      dir = vselect(pass, V3<L>{k == 0 ? sg : z, k == 1 ? sg : z, k == 2 ? sg : z}, dir);
-      face_axis = face_axis || pass;
-    }
-    d0 = dir;
-  }
+  if (prm.boolean) face_axis = box_face_probe(ha, hb, rot, pos, sep * sep, d0);
   // A pair separated along a face normal is done before the first round, as the loop's
   // early exit leaves it (it = 0, the first support point as the simplex): its outcome is
   // written to the block here, for every lane (a pair that runs on overwrites it when it
@@ -167,9 +140,7 @@ inline void start(const ConvexBoxPairs& p, std::size_t i, std::size_t k, const B
     return;
   }
   st3(w.a[0], k, a), st3(w.b[0], k, b);
-  for (int c = 0; c < 3; ++c) store(out.a[0][c] + k, c == 0 ? a.x : (c == 1 ? a.y : a.z));
-  for (int c = 0; c < 3; ++c) store(out.b[0][c] + k, c == 0 ? b.x : (c == 1 ? b.y : b.z));
-  st3(out.v, k, v);
+  st3(out.a[0], k, a), st3(out.b[0], k, b), st3(out.v, k, v);
   store(out.lambda[0] + k, L(1.0f)), store(out.lambda[1] + k, L(0.0f)), store(out.lambda[2] + k, L(0.0f));
   store(out.lambda[3] + k, L(0.0f));
   store(w.lambda[0] + k, L(1.0f)), store(w.lambda[1] + k, L(0.0f)), store(w.lambda[2] + k, L(0.0f));
