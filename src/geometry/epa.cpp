@@ -27,6 +27,16 @@ namespace {
 constexpr int kMaxVerts = 128;
 constexpr int kMaxFaces = 256;
 constexpr float kInf = __builtin_huge_valf();
+// A float's bits as an integer in the float's order: non-negative values as they are,
+// negative ones with their magnitude bits flipped; -0 becomes +0 first (they must tie).
+// d is not NaN.
+inline int32_t ordered(float d) {
+  const int32_t b = std::bit_cast<int32_t>(d + 0.0f);
+  return b ^ ((b >> 31) & 0x7fffffff);
+}
+constexpr int32_t kNone = 0x7f800000;  // ordered(+inf): no face's key
+// (j + 1) % 3 and (j + 2) % 3 without a division.
+constexpr int kNext[3] = {1, 2, 0}, kPrev[3] = {2, 0, 1};
 
 struct Face {
   int v[3];
@@ -40,47 +50,93 @@ struct Face {
 
 struct Polytope {
   SupportPoint vert[kMaxVerts];
+  // The vertices' w again, in columns: faces are built from them, and the repeat test
+  // compares a new support point with all of them in one loop the compiler vectorises.
+  float wx[kMaxVerts], wy[kMaxVerts], wz[kMaxVerts];
   Face face[kMaxFaces];
-  // The closest-face search key: d for a live face with a trusted normal and a finite
-  // distance, +inf for the others (dead, sliver, overflowed), so the search is a min over
-  // one dense array with no data-dependent branch (the face scan's compound test
-  // mispredicted about 23 times per EPA call).
-  float key[kMaxFaces];
+  // The closest-face search key: the face's distance d as an integer that orders as the
+  // float does (negative values' magnitude bits flipped, -0 made +0), for a live face with
+  // a trusted normal and a finite distance; kNone for the others (dead, sliver,
+  // overflowed). The search is a min over one dense array of integers with no
+  // data-dependent branch (the face scan's compound test mispredicted about 23 times per
+  // EPA call, and float selects became branches).
+  int32_t key[kMaxFaces + 3];
   int nv = 0, nf = 0;
   int horizon_face[kMaxFaces], horizon_edge[kMaxFaces];
   int nh = 0;
 
+  void set_column(int i) { wx[i] = vert[i].w.x, wy[i] = vert[i].w.y, wz[i] = vert[i].w.z; }
+  void push_vertex(const SupportPoint& s) { vert[nv] = s, set_column(nv), ++nv; }
+
+  // The face's plane from the columns, in scalars: the same operations, in the same order,
+  // as cross(), dot() and normalized() on vec3 (so the same bits), without the shuffles
+  // the compiler emits for three-float structs.
   int add_face(int a, int b, int c) {
     Face& f = face[nf];
     f.v[0] = a, f.v[1] = b, f.v[2] = c;
     f.adj[0] = f.adj[1] = f.adj[2] = -1;
     f.dead = false;
-    const vec3 e1 = vert[b].w - vert[a].w, e2 = vert[c].w - vert[a].w;
-    const vec3 n = cross(e1, e2);
-    const float nn = dot(n, n), ee = dot(e1, e1) * dot(e2, e2);
+    const float ax = wx[a], ay = wy[a], az = wz[a];
+    const float e1x = wx[b] - ax, e1y = wy[b] - ay, e1z = wz[b] - az;
+    const float e2x = wx[c] - ax, e2y = wy[c] - ay, e2z = wz[c] - az;
+    const float nx = e1y * e2z - e1z * e2y, ny = e1z * e2x - e1x * e2z, nz = e1x * e2y - e1y * e2x;
+    const float nn = nx * nx + ny * ny + nz * nz;
+    const float ee = (e1x * e1x + e1y * e1y + e1z * e1z) * (e2x * e2x + e2y * e2y + e2z * e2z);
     f.sliver = !(nn > 1e-12f * ee) || !(nn > 0.0f);
-    f.n = f.sliver ? vec3{} : normalized(n);
-    f.d = f.sliver ? 0.0f : dot(f.n, vert[a].w);
-    key[nf] = !f.sliver && f.d < kInf ? f.d : kInf;
+    if (f.sliver) {
+      f.n = vec3{}, f.d = 0.0f, key[nf] = kNone;
+      return nf++;
+    }
+    vec3 n;
+    if (nn >= 0x1p-100f && nn <= 0x1p+100f) {  // normalized()'s unscaled range
+      const float len = std::sqrt(nn);
+      n = vec3{nx / len, ny / len, nz / len};
+    } else {
+      n = normalized(vec3{nx, ny, nz});
+    }
+    f.n = n;
+    f.d = n.x * ax + n.y * ay + n.z * az;
+    key[nf] = f.d < kInf ? ordered(f.d) : kNone;
     return nf++;
   }
 
-  void kill(int g) { face[g].dead = true, key[g] = kInf; }
+  void kill(int g) { face[g].dead = true, key[g] = kNone; }
 
-  // The live, trusted face closest to the origin; ties go to the lowest index. -1 if none.
-  int closest() const {
-    float bk = kInf;
-    int best = -1;
-    for (int f = 0; f < nf; ++f) {
-      const float k = key[f];
-      const bool lt = k < bk;
-      bk = lt ? k : bk;
-      best = lt ? f : best;
+  // The live, trusted face closest to the origin; ties go to the lowest index (-0 and +0
+  // tie, as they would in a float scan). -1 if none. Four interleaved scans (faces f with
+  // f % 4 == c), each keeping its first least key, so the loop is not one chain of
+  // dependent selects (masks, not selects: the compiler made selects branches); of their
+  // four the least key wins, the lowest index among equal keys. The keys past the last
+  // face are set to kNone first, so the scans need no tail.
+  int closest() {
+    key[nf] = key[nf + 1] = key[nf + 2] = kNone;
+    int32_t m[4] = {kNone, kNone, kNone, kNone};
+    int32_t at[4] = {-1, -1, -1, -1};
+    for (int f = 0; f < nf; f += 4)
+      for (int c = 0; c < 4; ++c) {
+        const int32_t k = key[f + c];
+        const int32_t lt = -int32_t(k < m[c]);
+        at[c] ^= (at[c] ^ (f + c)) & lt;
+        m[c] ^= (m[c] ^ k) & lt;
+      }
+    int32_t least = m[0], best = at[0];
+    for (int c = 1; c < 4; ++c) {  // an unset at[c] has key kNone, which never wins
+      const int32_t take = -int32_t((m[c] < least) | ((m[c] == least) & (uint32_t(at[c]) < uint32_t(best))));
+      best ^= (best ^ at[c]) & take;
+      least ^= (least ^ m[c]) & take;
     }
     return best;
   }
 
-  bool visible(const Face& f, const vec3& w) const { return !f.sliver && dot(f.n, w) - f.d > 0.0f; }
+  // Whether any vertex is s (all three coordinates equal).
+  bool has_vertex(const vec3& s) const {
+    int hit = 0;
+    for (int i = 0; i < nv; ++i) hit |= (wx[i] == s.x) & (wy[i] == s.y) & (wz[i] == s.z);
+    return hit != 0;
+  }
+
+  // A sliver's normal and distance are zero, so it is never visible (0 - 0 > 0 is false).
+  bool visible(const Face& f, const vec3& w) const { return dot(f.n, w) - f.d > 0.0f; }
 
   // Van den Bergen's silhouette walk: g was reached across its edge j.
   void walk(int g, int j, const vec3& w) {
@@ -91,8 +147,8 @@ struct Polytope {
       return;
     }
     kill(g);
-    walk(f.adj[(j + 1) % 3], f.adj_edge[(j + 1) % 3], w);
-    walk(f.adj[(j + 2) % 3], f.adj_edge[(j + 2) % 3], w);
+    walk(f.adj[kNext[j]], f.adj_edge[kNext[j]], w);
+    walk(f.adj[kPrev[j]], f.adj_edge[kPrev[j]], w);
   }
 };
 
@@ -123,30 +179,6 @@ bool link(Polytope& p, int from) {
 // what link() finds (link() would fail exactly where a partner is missing). Otherwise it
 // leaves the fan to link().
 bool link_fan(Polytope& p, int from) {
-  // The silhouette walk lists the horizon in loop order: each new face starts where the one
-  // before it ended. Where that holds and no vertex starts two faces, the partners are the
-  // neighbours in the list (what the general search below finds, without its bookkeeping).
-  const int nh = p.nf - from;
-  if (nh >= 3) {
-    uint64_t seen[2] = {0, 0};
-    bool loop = true;
-    for (int h = 0; h < nh && loop; ++h) {
-      const Face& fa = p.face[from + h];
-      const Face& next = p.face[from + (h + 1 == nh ? 0 : h + 1)];
-      const int s = fa.v[0];
-      const uint64_t bit = uint64_t(1) << (s & 63);
-      loop = next.v[0] == fa.v[1] && (seen[s >> 6] & bit) == 0;
-      seen[s >> 6] |= bit;
-    }
-    if (loop) {
-      for (int h = 0; h < nh; ++h) {
-        Face& fa = p.face[from + h];
-        fa.adj[1] = from + (h + 1 == nh ? 0 : h + 1), fa.adj_edge[1] = 2;
-        fa.adj[2] = from + (h == 0 ? nh - 1 : h - 1), fa.adj_edge[2] = 1;
-      }
-      return true;
-    }
-  }
   static thread_local int start_of[kMaxVerts], end_of[kMaxVerts], stamp_s[kMaxVerts], stamp_e[kMaxVerts];
   static thread_local int stamp = 0;
   if (++stamp == 0x7fffffff) {
@@ -287,6 +319,7 @@ EpaOutcome epa(const PairFrame& pair, const Simplex& start, uint32_t max_iterati
     const SupportPoint t = p.vert[1];
     p.vert[1] = p.vert[2], p.vert[2] = t;
   }
+  for (int i = 0; i < 4; ++i) p.set_column(i);
   p.add_face(0, 2, 1), p.add_face(0, 1, 3), p.add_face(0, 3, 2), p.add_face(1, 2, 3);
   // Their adjacency, as link() finds it (every edge of a tetrahedron has one reverse).
   static constexpr int kAdj[4][3] = {{2, 3, 1}, {0, 3, 2}, {1, 3, 0}, {0, 2, 1}};
@@ -308,34 +341,48 @@ EpaOutcome epa(const PairFrame& pair, const Simplex& start, uint32_t max_iterati
       out.converged = true;
       break;
     }
-    bool repeat = false;
-    for (int i = 0; i < p.nv; ++i) {  // & and |, not && and ||: no branch per vertex
-      const vec3& u = p.vert[i].w;
-      repeat = repeat | ((u.x == s.w.x) & (u.y == s.w.y) & (u.z == s.w.z));
-    }
+    const bool repeat = p.has_vertex(s.w);
     if (repeat) {  // nothing new in this direction: the face is on the boundary
       out.converged = true;
       break;
     }
     if (p.nv >= kMaxVerts || p.nf + 64 > kMaxFaces) break;
     const int wi = p.nv;
-    p.vert[p.nv++] = s;
+    p.push_vertex(s);
     p.nh = 0;
     Face& start_face = p.face[best];
     p.kill(best);
     for (int i = 0; i < 3; ++i) p.walk(start_face.adj[i], start_face.adj_edge[i], s.w);
     if (p.nf + p.nh > kMaxFaces) break;
-    const int first = p.nf;
-    for (int h = 0; h < p.nh; ++h) {
+    // The silhouette walk lists the horizon in loop order: each new face (s, t, w) starts
+    // where the one before it ended. Where that holds and no vertex starts two faces, the
+    // partners of a new face's edges 1 (t -> w) and 2 (w -> s) are its neighbours in the
+    // list, linked here as the faces are made; otherwise link_fan() searches.
+    const int first = p.nf, nh = p.nh;
+    uint64_t seen[2] = {0, 0};
+    bool loop = nh >= 3;
+    int prev_t = -1;
+    for (int h = 0; h < nh; ++h) {
       Face& g = p.face[p.horizon_face[h]];
       const int j = p.horizon_edge[h];
-      const int nfi = p.add_face(g.v[(j + 1) % 3], g.v[j], wi);
-      p.face[nfi].adj[0] = p.horizon_face[h], p.face[nfi].adj_edge[0] = j;
+      const int sv = g.v[kNext[j]], tv = g.v[j];
+      const int nfi = p.add_face(sv, tv, wi);
+      Face& fa = p.face[nfi];
+      fa.adj[0] = p.horizon_face[h], fa.adj_edge[0] = j;
+      fa.adj[1] = first + (h + 1 == nh ? 0 : h + 1), fa.adj_edge[1] = 2;
+      fa.adj[2] = first + (h == 0 ? nh - 1 : h - 1), fa.adj_edge[2] = 1;
       g.adj[j] = nfi, g.adj_edge[j] = 0;
+      const uint64_t bit = uint64_t(1) << (sv & 63);
+      loop = loop & (h == 0 || sv == prev_t) & ((seen[sv >> 6] & bit) == 0);
+      seen[sv >> 6] |= bit;
+      prev_t = tv;
     }
-    // A horizon that is not one loop means rounding broke the surface: stop with the
-    // closest face of the last closed polytope (`best`, whose record is intact).
-    if (!link_fan(p, first)) break;
+    if (!(loop && p.face[first].v[0] == prev_t)) {
+      for (int f = first; f < p.nf; ++f) p.face[f].adj[1] = p.face[f].adj[2] = -1;
+      // A horizon that is not one loop means rounding broke the surface: stop with the
+      // closest face of the last closed polytope (`best`, whose record is intact).
+      if (!link_fan(p, first)) break;
+    }
   }
   out.iterations = it;
   if (best < 0) {
