@@ -187,15 +187,22 @@ const char* pair_of(const gyro_convex_shape& a, const gyro_convex_pose& pa, cons
   return nullptr;
 }
 
+// The C result is the C++ one field for field (the asserts below), so it is one copy.
+static_assert(sizeof(gyro_convex_result) == sizeof(gyro::ConvexResult) && sizeof(gyro_convex_status) == 4);
+static_assert(offsetof(gyro_convex_result, distance) == offsetof(gyro::ConvexResult, distance) &&
+              offsetof(gyro_convex_result, normal) == offsetof(gyro::ConvexResult, normal) &&
+              offsetof(gyro_convex_result, point_a) == offsetof(gyro::ConvexResult, point_a) &&
+              offsetof(gyro_convex_result, point_b) == offsetof(gyro::ConvexResult, point_b) &&
+              offsetof(gyro_convex_result, iterations) == offsetof(gyro::ConvexResult, iterations));
+static_assert(uint32_t(gyro::ConvexStatus::separated) == GYRO_CONVEX_SEPARATED &&
+              uint32_t(gyro::ConvexStatus::touching) == GYRO_CONVEX_TOUCHING &&
+              uint32_t(gyro::ConvexStatus::intersecting) == GYRO_CONVEX_INTERSECTING &&
+              uint32_t(gyro::ConvexStatus::iteration_limit) == GYRO_CONVEX_ITERATION_LIMIT &&
+              uint32_t(gyro::ConvexStatus::invalid_input) == GYRO_CONVEX_INVALID_INPUT);
+
 gyro_convex_result c_result(const gyro::ConvexResult& r) {
   gyro_convex_result c;
-  std::memset(&c, 0, sizeof c);
-  c.status = static_cast<gyro_convex_status>(r.status);
-  c.distance = r.distance;
-  c.normal = c_v3(r.normal);
-  c.point_a = c_v3(r.point_a);
-  c.point_b = c_v3(r.point_b);
-  c.iterations = r.iterations;
+  std::memcpy(&c, &r, sizeof c);
   return c;
 }
 
@@ -269,8 +276,12 @@ struct BoxColumns {
     for (std::size_t k0 = 0; k0 < padded; k0 += 8) {
       unsigned ok[8];
       for (unsigned& o : ok) o = 1;
-      for (const auto& c : col)  // every value finite
-        for (int j = 0; j < 8; ++j) ok[j] &= unsigned((std::bit_cast<uint32_t>(c[k0 + j]) & 0x7f800000u) != 0x7f800000u);
+      // Centres and half extents finite. The rotations' finiteness is rotation_ok's: a NaN
+      // or infinite entry makes its row's squared length minus 1 NaN or infinite, outside
+      // the tolerance (so the verdict is pose_of's, 18 of 30 columns fewer to scan).
+      for (int base : {0, 15})
+        for (int c = base; c < base + 6; ++c)
+          for (int j = 0; j < 8; ++j) ok[j] &= unsigned((std::bit_cast<uint32_t>(col[c][k0 + j]) & 0x7f800000u) != 0x7f800000u);
       for (int c : {3, 4, 5, 18, 19, 20})  // half extents not negative
         for (int j = 0; j < 8; ++j) ok[j] &= unsigned(col[c][k0 + j] >= 0.0f);
       for (int base : {6, 21}) {  // the rotations, lane by lane
