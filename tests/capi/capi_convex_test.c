@@ -469,7 +469,7 @@ typedef gyro_status (*pairs_fn)(const gyro_convex_shape*, const gyro_convex_pose
 
 /* Bad box-box pairs (the pair calls check those in columns, before the lanes): flagged one by
    one by every call, the good ones answered as one by one. */
-#define BAD_BOXES 10
+#define BAD_BOXES 12
 static void test_invalid_box_pairs(void) {
   gyro_convex_hull* cube = cube_hull();
   gyro_convex_shape a[BAD_BOXES], b[BAD_BOXES];
@@ -492,6 +492,8 @@ static void test_invalid_box_pairs(void) {
   a[7].hull = cube;               /* a hull for a box */
   b[8].half_extents.z = NAN;      /* a NaN size */
   pb[9].rotation[0].y = 0.01f;    /* rows 1% off orthogonal: beyond the 1e-3 tolerance */
+  pa[10].rotation[0].z = NAN;     /* a NaN rotation (only the rotation test sees it) */
+  pb[11].rotation[2].x = -INFINITY;
   for (q = 0; q < 4; ++q) {
     memset(out, 0xAB, sizeof out);
     CHECK(queries[q](a, pa, b, pb, BAD_BOXES, out) == GYRO_OK);
