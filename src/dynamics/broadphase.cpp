@@ -34,6 +34,7 @@
 // branch per compare) took about twice as long.
 #include "dynamics/broadphase.hpp"
 
+#include "core/float_order.hpp"
 #include "core/parallel.hpp"
 
 #include <algorithm>
@@ -58,13 +59,6 @@ constexpr std::size_t kPrefetch = 8;       // how far ahead the gather prefetche
 constexpr uint32_t kMaxSweepChunks = 64;   // cells are swept in at most this many parallel chunks
 constexpr std::size_t kBuildChunk = 32768;  // boxes per parallel chunk while building the lists
 constexpr std::size_t kParallelItems = 32768;  // fewer sweep items than this: one thread
-
-/// Order-preserving map of a float's bits to uint32 (-0 sorts just before +0, both equal
-/// as floats, which the sweep's float compares handle).
-inline uint32_t sortable_bits(float f) {
-  const uint32_t u = std::bit_cast<uint32_t>(f);
-  return (u & 0x80000000u) ? ~u : (u | 0x80000000u);
-}
 
 inline float coord(const BroadphaseInput& in, bool max, int axis, uint32_t slot) {
   const float* const lo[3] = {in.min_x, in.min_y, in.min_z};

@@ -19,6 +19,7 @@
 //
 // Determinism: + - * / sqrt and comparisons in a fixed order; ties go to the lowest face
 // index.
+#include "core/float_order.hpp"
 #include "geometry/convex_support.hpp"
 
 namespace gyro::detail {
@@ -27,14 +28,10 @@ namespace {
 constexpr int kMaxVerts = 128;
 constexpr int kMaxFaces = 256;
 constexpr float kInf = __builtin_huge_valf();
-// A float's bits as an integer in the float's order: non-negative values as they are,
-// negative ones with their magnitude bits flipped; -0 becomes +0 first (they must tie).
-// d is not NaN.
-inline int32_t ordered(float d) {
-  const int32_t b = std::bit_cast<int32_t>(d + 0.0f);
-  return b ^ ((b >> 31) & 0x7fffffff);
-}
-constexpr int32_t kNone = 0x7f800000;  // ordered(+inf): no face's key
+// The closest-face key of a distance d (not NaN): its bits in the float's order, -0 made +0
+// first so the two zeros tie as they do in a float compare.
+inline uint32_t face_key(float d) { return sortable_bits(d + 0.0f); }
+constexpr uint32_t kNone = 0xff800000u;  // sortable_bits(+inf): no face's key
 // (j + 1) % 3 and (j + 2) % 3 without a division.
 constexpr int kNext[3] = {1, 2, 0}, kPrev[3] = {2, 0, 1};
 
@@ -54,13 +51,13 @@ struct Polytope {
   // compares a new support point with all of them in one loop the compiler vectorises.
   float wx[kMaxVerts], wy[kMaxVerts], wz[kMaxVerts];
   Face face[kMaxFaces];
-  // The closest-face search key: the face's distance d as an integer that orders as the
-  // float does (negative values' magnitude bits flipped, -0 made +0), for a live face with
+  // The closest-face search key: face_key(d), an integer that orders as the float d does,
+  // for a live face with
   // a trusted normal and a finite distance; kNone for the others (dead, sliver,
   // overflowed). The search is a min over one dense array of integers with no
   // data-dependent branch (the face scan's compound test mispredicted about 23 times per
   // EPA call, and float selects became branches).
-  int32_t key[kMaxFaces + 3];
+  uint32_t key[kMaxFaces + 3];
   int nv = 0, nf = 0;
   int horizon_face[kMaxFaces], horizon_edge[kMaxFaces];
   int nh = 0;
@@ -87,16 +84,10 @@ struct Polytope {
       f.n = vec3{}, f.d = 0.0f, key[nf] = kNone;
       return nf++;
     }
-    vec3 n;
-    if (nn >= 0x1p-100f && nn <= 0x1p+100f) {  // normalized()'s unscaled range
-      const float len = std::sqrt(nn);
-      n = vec3{nx / len, ny / len, nz / len};
-    } else {
-      n = normalized(vec3{nx, ny, nz});
-    }
+    const vec3 n = normalized(vec3{nx, ny, nz});
     f.n = n;
     f.d = n.x * ax + n.y * ay + n.z * az;
-    key[nf] = f.d < kInf ? ordered(f.d) : kNone;
+    key[nf] = f.d < kInf ? face_key(f.d) : kNone;
     return nf++;
   }
 
@@ -110,20 +101,21 @@ struct Polytope {
   // face are set to kNone first, so the scans need no tail.
   int closest() {
     key[nf] = key[nf + 1] = key[nf + 2] = kNone;
-    int32_t m[4] = {kNone, kNone, kNone, kNone};
+    uint32_t m[4] = {kNone, kNone, kNone, kNone};
     int32_t at[4] = {-1, -1, -1, -1};
     for (int f = 0; f < nf; f += 4)
       for (int c = 0; c < 4; ++c) {
-        const int32_t k = key[f + c];
+        const uint32_t k = key[f + c];
         const int32_t lt = -int32_t(k < m[c]);
         at[c] ^= (at[c] ^ (f + c)) & lt;
-        m[c] ^= (m[c] ^ k) & lt;
+        m[c] ^= (m[c] ^ k) & uint32_t(lt);
       }
-    int32_t least = m[0], best = at[0];
+    uint32_t least = m[0];
+    int32_t best = at[0];
     for (int c = 1; c < 4; ++c) {  // an unset at[c] has key kNone, which never wins
       const int32_t take = -int32_t((m[c] < least) | ((m[c] == least) & (uint32_t(at[c]) < uint32_t(best))));
       best ^= (best ^ at[c]) & take;
-      least ^= (least ^ m[c]) & take;
+      least ^= (least ^ m[c]) & uint32_t(take);
     }
     return best;
   }
