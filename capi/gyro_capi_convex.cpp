@@ -18,6 +18,7 @@
 #include "gyro/math_quat.hpp"
 
 #include <bit>
+#include <cfloat>
 #include <climits>
 #include <cstddef>
 #include <cstring>
@@ -276,14 +277,14 @@ struct BoxColumns {
     for (std::size_t k0 = 0; k0 < padded; k0 += 8) {
       unsigned ok[8];
       for (unsigned& o : ok) o = 1;
-      // Centres and half extents finite. The rotations' finiteness is rotation_ok's: a NaN
-      // or infinite entry makes its row's squared length minus 1 NaN or infinite, outside
-      // the tolerance (so the verdict is pose_of's, 18 of 30 columns fewer to scan).
-      for (int base : {0, 15})
-        for (int c = base; c < base + 6; ++c)
-          for (int j = 0; j < 8; ++j) ok[j] &= unsigned((std::bit_cast<uint32_t>(col[c][k0 + j]) & 0x7f800000u) != 0x7f800000u);
-      for (int c : {3, 4, 5, 18, 19, 20})  // half extents not negative
-        for (int j = 0; j < 8; ++j) ok[j] &= unsigned(col[c][k0 + j] >= 0.0f);
+      // Centres finite; half extents in [0, FLT_MAX] (finite and not negative: NaN fails
+      // both compares). The rotations' finiteness is rotation_ok's: a NaN or infinite entry
+      // makes its row's squared length minus 1 NaN or infinite, outside the tolerance. So
+      // the verdict is pose_of's and shape_of's, each column read once.
+      for (int c : {0, 1, 2, 15, 16, 17})
+        for (int j = 0; j < 8; ++j) ok[j] &= unsigned((std::bit_cast<uint32_t>(col[c][k0 + j]) & 0x7f800000u) != 0x7f800000u);
+      for (int c : {3, 4, 5, 18, 19, 20})
+        for (int j = 0; j < 8; ++j) ok[j] &= within(col[c][k0 + j], 0.0f, FLT_MAX);
       for (int base : {6, 21}) {  // the rotations, lane by lane
         const float* r = &col[base][k0];
         const auto at = [&](int q, int j) { return r[std::size_t(q) * kPairChunk + std::size_t(j)]; };
