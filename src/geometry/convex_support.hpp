@@ -9,6 +9,7 @@
 #include "gyro/convex.hpp"
 
 #include <bit>
+#include <cstddef>
 #include <cstdint>
 
 namespace gyro::detail {
@@ -115,5 +116,11 @@ struct EpaOutcome {
 /// Expanding polytope from a simplex whose hull contains the origin (on its boundary is
 /// allowed: GJK exits with 1 to 4 points). Fixed capacity, no heap.
 EpaOutcome epa(const PairFrame& pair, const Simplex& start, uint32_t max_iterations);
+
+/// out[i] = epa(*pairs[i], starts[i], max_iterations) for i in [0, count), bit for bit, where
+/// every pair is two boxes' cores: up to 16 polytopes grow side by side, their supports and
+/// new faces' planes computed over SIMD lanes (epa_lanes.hpp) and their topology per polytope.
+void epa_boxes(const PairFrame* const* pairs, const Simplex* starts, std::size_t count, uint32_t max_iterations,
+               EpaOutcome* out);
 
 }  // namespace gyro::detail

@@ -21,6 +21,9 @@
 // index.
 #include "core/float_order.hpp"
 #include "geometry/convex_support.hpp"
+#include "geometry/epa_lanes.hpp"
+
+#include <memory>
 
 namespace gyro::detail {
 namespace {
@@ -65,14 +68,28 @@ struct Polytope {
   void set_column(int i) { wx[i] = vert[i].w.x, wy[i] = vert[i].w.y, wz[i] = vert[i].w.z; }
   void push_vertex(const SupportPoint& s) { vert[nv] = s, set_column(nv), ++nv; }
 
-  // The face's plane from the columns, in scalars: the same operations, in the same order,
-  // as cross(), dot() and normalized() on vec3 (so the same bits), without the shuffles
-  // the compiler emits for three-float structs.
-  int add_face(int a, int b, int c) {
+  // A face with its corners and no neighbours yet; its plane comes from add_face or, for
+  // epa_boxes, from the lanes (set_plane).
+  int add_topology(int a, int b, int c) {
     Face& f = face[nf];
     f.v[0] = a, f.v[1] = b, f.v[2] = c;
     f.adj[0] = f.adj[1] = f.adj[2] = -1;
     f.dead = false;
+    return nf++;
+  }
+
+  void set_plane(int g, const vec3& n, float d, bool sliver) {
+    Face& f = face[g];
+    f.n = n, f.d = d, f.sliver = sliver;
+    key[g] = !sliver && d < kInf ? face_key(d) : kNone;
+  }
+
+  // The face's plane from the columns, in scalars: the same operations, in the same order,
+  // as cross(), dot() and normalized() on vec3 (so the same bits), without the shuffles
+  // the compiler emits for three-float structs. epa_lanes.cpp's plane() is the same again.
+  int add_face(int a, int b, int c) {
+    const int g = add_topology(a, b, c);
+    Face& f = face[g];
     const float ax = wx[a], ay = wy[a], az = wz[a];
     const float e1x = wx[b] - ax, e1y = wy[b] - ay, e1z = wz[b] - az;
     const float e2x = wx[c] - ax, e2y = wy[c] - ay, e2z = wz[c] - az;
@@ -81,14 +98,14 @@ struct Polytope {
     const float ee = (e1x * e1x + e1y * e1y + e1z * e1z) * (e2x * e2x + e2y * e2y + e2z * e2z);
     f.sliver = !(nn > 1e-12f * ee) || !(nn > 0.0f);
     if (f.sliver) {
-      f.n = vec3{}, f.d = 0.0f, key[nf] = kNone;
-      return nf++;
+      f.n = vec3{}, f.d = 0.0f, key[g] = kNone;
+      return g;
     }
     const vec3 n = normalized(vec3{nx, ny, nz});
     f.n = n;
     f.d = n.x * ax + n.y * ay + n.z * az;
-    key[nf] = f.d < kInf ? face_key(f.d) : kNone;
-    return nf++;
+    key[g] = f.d < kInf ? face_key(f.d) : kNone;
+    return g;
   }
 
   void kill(int g) { face[g].dead = true, key[g] = kNone; }
@@ -286,25 +303,26 @@ bool curved(const ConvexShape& s, bool core) {
          (!core && (s.type == ConvexType::sphere || s.type == ConvexType::capsule) && s.radius > 0.0f);
 }
 
-}  // namespace
+// One EPA run's loop state. The loop is split into its two halves (select the closest face;
+// expand towards a support point) so that epa_boxes can run many polytopes side by side with
+// the supports and the planes in lanes, through the same code as epa().
+struct Run {
+  int best = -1;
+  uint32_t it = 0;
+  bool converged = false;
+  float tol = 0.0f;
+  vec3 flat_normal{0.0f, 1.0f, 0.0f};
+};
 
-EpaOutcome epa(const PairFrame& pair, const Simplex& start, uint32_t max_iterations) {
-  EpaOutcome out;
-  // One polytope per thread, reused: its 18 KB are never zeroed, and only what this call
-  // writes is read, so reuse cannot change a result.
-  thread_local Polytope p;
+// GJK's simplex grown to an outward tetrahedron; false if A - B is flat (see blow_up).
+// add(a, b, c) makes a face (add_face, or its topology with the plane pending).
+template <class AddFace>
+bool begin(Polytope& p, const PairFrame& pair, const Simplex& start, Run& r, AddFace&& add) {
   p.nv = p.nf = p.nh = 0;
   // GJK's simplex; with 4 points it already encloses the origin.
   for (int i = 0; i < start.n; ++i) p.vert[p.nv++] = start.p[i];
   const float eps = 1e-6f * pair.scale;
-  vec3 flat_normal{0.0f, 1.0f, 0.0f};
-  if (!blow_up(p, pair, eps, flat_normal)) {
-    // No volume: the depth is 0 and the contact is GJK's closest point.
-    out.converged = out.flat = true;
-    out.normal = flat_normal;
-    for (int i = 0; i < start.n; ++i) out.point_a += start.p[i].a * start.lambda[i], out.point_b += start.p[i].b * start.lambda[i];
-    return out;
-  }
+  if (!blow_up(p, pair, eps, r.flat_normal)) return false;
   // Orient the tetrahedron so its faces point outwards.
   const vec3 v0 = p.vert[0].w;
   if (dot(p.vert[1].w - v0, cross(p.vert[2].w - v0, p.vert[3].w - v0)) < 0.0f) {
@@ -312,89 +330,100 @@ EpaOutcome epa(const PairFrame& pair, const Simplex& start, uint32_t max_iterati
     p.vert[1] = p.vert[2], p.vert[2] = t;
   }
   for (int i = 0; i < 4; ++i) p.set_column(i);
-  p.add_face(0, 2, 1), p.add_face(0, 1, 3), p.add_face(0, 3, 2), p.add_face(1, 2, 3);
+  add(0, 2, 1), add(0, 1, 3), add(0, 3, 2), add(1, 2, 3);
   // Their adjacency, as link() finds it (every edge of a tetrahedron has one reverse).
   static constexpr int kAdj[4][3] = {{2, 3, 1}, {0, 3, 2}, {1, 3, 0}, {0, 2, 1}};
   static constexpr int kAdjEdge[4][3] = {{2, 0, 0}, {2, 2, 0}, {2, 1, 0}, {1, 1, 1}};
   for (int f = 0; f < 4; ++f)
     for (int i = 0; i < 3; ++i) p.face[f].adj[i] = kAdj[f][i], p.face[f].adj_edge[i] = kAdjEdge[f][i];
-
   // Curved supports approach their surface only quadratically: ask less of them.
-  const float tol = (curved(*pair.a, pair.core) || curved(*pair.b, pair.core) ? 1e-4f : 1e-6f) * pair.scale;
-  int best = -1;
-  uint32_t it = 0;
-  for (;; ++it) {
-    best = p.closest();
-    if (best < 0) break;  // only where every face is a sliver or overflowed
-    const Face& bf = p.face[best];
-    if (it >= max_iterations) break;
-    const SupportPoint s = pair.support(bf.n);
-    if (dot(s.w, bf.n) - bf.d <= tol) {
-      out.converged = true;
-      break;
-    }
-    const bool repeat = p.has_vertex(s.w);
-    if (repeat) {  // nothing new in this direction: the face is on the boundary
-      out.converged = true;
-      break;
-    }
-    if (p.nv >= kMaxVerts || p.nf + 64 > kMaxFaces) break;
-    const int wi = p.nv;
-    p.push_vertex(s);
-    p.nh = 0;
-    Face& start_face = p.face[best];
-    p.kill(best);
-    for (int i = 0; i < 3; ++i) p.walk(start_face.adj[i], start_face.adj_edge[i], s.w);
-    if (p.nf + p.nh > kMaxFaces) break;
-    // The silhouette walk lists the horizon in loop order: each new face (s, t, w) starts
-    // where the one before it ended. Where that holds and no vertex starts two faces, the
-    // partners of a new face's edges 1 (t -> w) and 2 (w -> s) are its neighbours in the
-    // list, linked here as the faces are made; otherwise link_fan() searches.
-    const int first = p.nf, nh = p.nh;
-    uint64_t seen[2] = {0, 0};
-    bool loop = nh >= 3;
-    int prev_t = -1;
-    for (int h = 0; h < nh; ++h) {
-      Face& g = p.face[p.horizon_face[h]];
-      const int j = p.horizon_edge[h];
-      const int sv = g.v[kNext[j]], tv = g.v[j];
-      const int nfi = p.add_face(sv, tv, wi);
-      Face& fa = p.face[nfi];
-      fa.adj[0] = p.horizon_face[h], fa.adj_edge[0] = j;
-      fa.adj[1] = first + (h + 1 == nh ? 0 : h + 1), fa.adj_edge[1] = 2;
-      fa.adj[2] = first + (h == 0 ? nh - 1 : h - 1), fa.adj_edge[2] = 1;
-      g.adj[j] = nfi, g.adj_edge[j] = 0;
-      const uint64_t bit = uint64_t(1) << (sv & 63);
-      loop = loop & (h == 0 || sv == prev_t) & ((seen[sv >> 6] & bit) == 0);
-      seen[sv >> 6] |= bit;
-      prev_t = tv;
-    }
-    if (!(loop && p.face[first].v[0] == prev_t)) {
-      for (int f = first; f < p.nf; ++f) p.face[f].adj[1] = p.face[f].adj[2] = -1;
-      // A horizon that is not one loop means rounding broke the surface: stop with the
-      // closest face of the last closed polytope (`best`, whose record is intact).
-      if (!link_fan(p, first)) break;
-    }
+  r.tol = (curved(*pair.a, pair.core) || curved(*pair.b, pair.core) ? 1e-4f : 1e-6f) * pair.scale;
+  return true;
+}
+
+// The loop's first half: the closest face (every plane set). false: the loop ends here.
+bool select_face(Polytope& p, Run& r, uint32_t max_iterations) {
+  r.best = p.closest();
+  return r.best >= 0 && r.it < max_iterations;  // best < 0 only where every face is a sliver or overflowed
+}
+
+// The second half: s is the support along the closest face's normal. Adds the vertex and
+// the fan of new faces (planes through add); false: the loop ends (converged or stuck).
+template <class AddFace> bool expand(Polytope& p, Run& r, const SupportPoint& s, AddFace&& add) {
+  const Face& bf = p.face[r.best];
+  if (dot(s.w, bf.n) - bf.d <= r.tol) {
+    r.converged = true;
+    return false;
   }
-  out.iterations = it;
-  if (best < 0) {
+  if (p.has_vertex(s.w)) {  // nothing new in this direction: the face is on the boundary
+    r.converged = true;
+    return false;
+  }
+  if (p.nv >= kMaxVerts || p.nf + 64 > kMaxFaces) return false;
+  const int wi = p.nv;
+  p.push_vertex(s);
+  p.nh = 0;
+  Face& start_face = p.face[r.best];
+  p.kill(r.best);
+  for (int i = 0; i < 3; ++i) p.walk(start_face.adj[i], start_face.adj_edge[i], s.w);
+  if (p.nf + p.nh > kMaxFaces) return false;
+  // The silhouette walk lists the horizon in loop order: each new face (s, t, w) starts
+  // where the one before it ended. Where that holds and no vertex starts two faces, the
+  // partners of a new face's edges 1 (t -> w) and 2 (w -> s) are its neighbours in the
+  // list, linked here as the faces are made; otherwise link_fan() searches.
+  const int first = p.nf, nh = p.nh;
+  uint64_t seen[2] = {0, 0};
+  bool loop = nh >= 3;
+  int prev_t = -1;
+  for (int h = 0; h < nh; ++h) {
+    Face& g = p.face[p.horizon_face[h]];
+    const int j = p.horizon_edge[h];
+    const int sv = g.v[kNext[j]], tv = g.v[j];
+    const int nfi = add(sv, tv, wi);
+    Face& fa = p.face[nfi];
+    fa.adj[0] = p.horizon_face[h], fa.adj_edge[0] = j;
+    fa.adj[1] = first + (h + 1 == nh ? 0 : h + 1), fa.adj_edge[1] = 2;
+    fa.adj[2] = first + (h == 0 ? nh - 1 : h - 1), fa.adj_edge[2] = 1;
+    g.adj[j] = nfi, g.adj_edge[j] = 0;
+    const uint64_t bit = uint64_t(1) << (sv & 63);
+    loop = loop & (h == 0 || sv == prev_t) & ((seen[sv >> 6] & bit) == 0);
+    seen[sv >> 6] |= bit;
+    prev_t = tv;
+  }
+  if (!(loop && p.face[first].v[0] == prev_t)) {
+    for (int f = first; f < p.nf; ++f) p.face[f].adj[1] = p.face[f].adj[2] = -1;
+    // A horizon that is not one loop means rounding broke the surface: stop with the
+    // closest face of the last closed polytope (`best`, whose record is intact).
+    if (!link_fan(p, first)) return false;
+  }
+  ++r.it;
+  return true;
+}
+
+// The outcome once the loop has ended (every plane set).
+EpaOutcome outcome(const Polytope& p, const Run& r) {
+  EpaOutcome out;
+  out.converged = r.converged;
+  out.iterations = r.it;
+  if (r.best < 0) {
     // Degenerate beyond repair (every face a sliver): report the flat answer.
     out.flat = true;
-    out.normal = flat_normal;
+    out.normal = r.flat_normal;
     return out;
   }
-  const Face& bf = p.face[best];
+  const Face& bf = p.face[r.best];
+  const float tol = r.tol;
   float l[3];
   const vec3 q = bf.n * bf.d;
   // A flat side of the Minkowski difference is several coplanar triangles at the same
   // distance, and the closest by a rounding error need not be the one holding q: clamping q
   // onto it would put the witnesses metres off on a 100:1 pair. Take the first coplanar
   // live face that holds q.
-  int chosen = best;
+  int chosen = r.best;
   if (!barycentric(p.vert[bf.v[0]].w, p.vert[bf.v[1]].w, p.vert[bf.v[2]].w, q, l)) {
     for (int g = 0; g < p.nf; ++g) {
       const Face& h = p.face[g];
-      if (g == best || h.dead || h.sliver || !(h.d - bf.d <= tol && bf.d - h.d <= tol) || dot(h.n, bf.n) < 0.9999f)
+      if (g == r.best || h.dead || h.sliver || !(h.d - bf.d <= tol && bf.d - h.d <= tol) || dot(h.n, bf.n) < 0.9999f)
         continue;
       float m[3];
       if (barycentric(p.vert[h.v[0]].w, p.vert[h.v[1]].w, p.vert[h.v[2]].w, q, m)) {
@@ -408,6 +437,132 @@ EpaOutcome epa(const PairFrame& pair, const Simplex& start, uint32_t max_iterati
   out.normal = bf.n;  // the closest face's normal and depth; the chosen one only places the witnesses
   out.depth = bf.d > 0.0f ? bf.d : 0.0f;  // the origin a rounding error outside: touching
   return out;
+}
+
+// No volume: the depth is 0 and the contact is GJK's closest point.
+EpaOutcome flat_outcome(const Simplex& start, const Run& r) {
+  EpaOutcome out;
+  out.converged = out.flat = true;
+  out.normal = r.flat_normal;
+  for (int i = 0; i < start.n; ++i) out.point_a += start.p[i].a * start.lambda[i], out.point_b += start.p[i].b * start.lambda[i];
+  return out;
+}
+
+}  // namespace
+
+EpaOutcome epa(const PairFrame& pair, const Simplex& start, uint32_t max_iterations) {
+  // One polytope per thread, reused: its 18 KB are never zeroed, and only what this call
+  // writes is read, so reuse cannot change a result.
+  thread_local Polytope p;
+  Run r;
+  auto add = [&](int a, int b, int c) { return p.add_face(a, b, c); };
+  if (!begin(p, pair, start, r, add)) return flat_outcome(start, r);
+  while (select_face(p, r, max_iterations) && expand(p, r, pair.support(p.face[r.best].n), add)) {
+  }
+  return outcome(p, r);
+}
+
+namespace {
+
+// epa_boxes' state: a polytope per slot, the slots' frames and support requests, and the
+// faces whose planes are pending.
+struct BoxSlots {
+  static constexpr int kSlots = int(EpaBoxSlots::kSlots);
+  Polytope poly[kSlots];
+  Run run[kSlots];
+  int job[kSlots];   // the pair in the slot, -1 if free
+  bool ended[kSlots];  // the loop has ended; the outcome waits for the pending planes
+  EpaBoxSlots lanes;
+  EpaPlaneJobs planes;
+  int pending = 0;
+  int16_t plane_slot[EpaPlaneJobs::kMax];
+  int16_t plane_face[EpaPlaneJobs::kMax];
+
+  // Face (a, b, c) of slot k with its plane pending.
+  int add(int k, int a, int b, int c) {
+    Polytope& p = poly[k];
+    const int g = p.add_topology(a, b, c);
+    const int j = pending++;
+    planes.a[0][j] = p.wx[a], planes.a[1][j] = p.wy[a], planes.a[2][j] = p.wz[a];
+    planes.b[0][j] = p.wx[b], planes.b[1][j] = p.wy[b], planes.b[2][j] = p.wz[b];
+    planes.c[0][j] = p.wx[c], planes.c[1][j] = p.wy[c], planes.c[2][j] = p.wz[c];
+    plane_slot[j] = int16_t(k), plane_face[j] = int16_t(g);
+    return g;
+  }
+
+  void flush(epa_planes_fn* kernel) {
+    if (pending == 0) return;
+    kernel(planes, std::size_t(pending));
+    for (int j = 0; j < pending; ++j)
+      poly[plane_slot[j]].set_plane(plane_face[j], vec3{planes.n[0][j], planes.n[1][j], planes.n[2][j]}, planes.d[j],
+                                    planes.sliver[j] != 0.0f);
+    pending = 0;
+  }
+};
+
+}  // namespace
+
+void epa_boxes(const PairFrame* const* pairs, const Simplex* starts, std::size_t count, uint32_t max_iterations,
+               EpaOutcome* out) {
+  thread_local std::unique_ptr<BoxSlots> state;
+  if (!state) state = std::make_unique<BoxSlots>();
+  BoxSlots& S = *state;
+  epa_planes_fn* const planes = GYRO_DISPATCH(epa_planes);
+  epa_box_support_fn* const support = GYRO_DISPATCH(epa_box_support);
+  constexpr int kSlots = BoxSlots::kSlots;
+  // A slot's faces number at most kMaxFaces; flushing before a slot could overflow the list
+  // keeps every pending plane in it.
+  static_assert(EpaPlaneJobs::kMax >= 2 * kMaxFaces, "room for one more slot's faces");
+  for (int k = 0; k < kSlots; ++k) S.job[k] = -1, S.ended[k] = false;
+  S.pending = 0;
+  std::size_t next = 0;
+  int busy = 0;
+  for (;;) {
+    // Fill free slots with the next pairs (a simplex of fewer than 4 points runs epa()).
+    for (int k = 0; k < kSlots && next < count; ++k) {
+      if (S.job[k] >= 0) continue;
+      while (next < count && starts[next].n < 4) out[next] = epa(*pairs[next], starts[next], max_iterations), ++next;
+      if (next == count) break;
+      const std::size_t i = next++;
+      const PairFrame& f = *pairs[i];
+      if (S.pending + 4 > int(EpaPlaneJobs::kMax) - kMaxFaces) S.flush(planes);
+      S.run[k] = Run{};
+      begin(S.poly[k], f, starts[i], S.run[k], [&](int a, int b, int c) { return S.add(k, a, b, c); });
+      for (int c = 0; c < 3; ++c) {
+        S.lanes.ha[c][k] = f.a->half_extents[c], S.lanes.hb[c][k] = f.b->half_extents[c];
+        S.lanes.pos[c][k] = f.pos_b[c];
+        for (int r = 0; r < 3; ++r) S.lanes.rot[3 * r + c][k] = f.rot_b.m[r][c];
+      }
+      S.job[k] = int(i), S.ended[k] = false, ++busy;
+    }
+    if (busy == 0) break;
+    S.flush(planes);
+    // Every plane is set: ended slots give their outcome; the others select a face and ask
+    // for a support along its normal.
+    bool any = false;
+    for (int k = 0; k < kSlots; ++k) {
+      if (S.job[k] < 0) continue;
+      Polytope& p = S.poly[k];
+      if (!S.ended[k] && select_face(p, S.run[k], max_iterations)) {
+        const vec3& n = p.face[S.run[k].best].n;
+        S.lanes.dir[0][k] = n.x, S.lanes.dir[1][k] = n.y, S.lanes.dir[2][k] = n.z;
+        any = true;
+        continue;
+      }
+      out[S.job[k]] = outcome(p, S.run[k]);
+      S.job[k] = -1, --busy;
+    }
+    if (!any) continue;
+    support(S.lanes);
+    for (int k = 0; k < kSlots; ++k) {
+      if (S.job[k] < 0) continue;
+      const SupportPoint s{{S.lanes.w[0][k], S.lanes.w[1][k], S.lanes.w[2][k]},
+                           {S.lanes.a[0][k], S.lanes.a[1][k], S.lanes.a[2][k]},
+                           {S.lanes.b[0][k], S.lanes.b[1][k], S.lanes.b[2][k]}};
+      if (S.pending > int(EpaPlaneJobs::kMax) - kMaxFaces) S.flush(planes);
+      S.ended[k] = !expand(S.poly[k], S.run[k], s, [&](int a, int b, int c) { return S.add(k, a, b, c); });
+    }
+  }
 }
 
 }  // namespace gyro::detail

@@ -459,6 +459,27 @@ ConvexResult finish(const ConvexPose& pa, ConvexStatus st, float distance, const
 
 enum class Mode { intersect, distance, penetration };
 
+// Whether conclude() runs EPA on this end state.
+bool needs_epa(const PairFrame& f, const GjkOut& g, const ConvexQueryOptions& opt, Mode mode) {
+  const float margins = margin_of(*f.a) + margin_of(*f.b);
+  return g.enclosed && !(mode != Mode::penetration && (g.full || margins > opt.touch_tolerance * f.scale));
+}
+
+// conclude()'s end where EPA ran (e is its outcome on g's simplex).
+ConvexResult conclude_epa(const ConvexPose& pa, const PairFrame& f, const GjkOut& g, const ConvexQueryOptions& opt,
+                          Mode mode, const EpaOutcome& e) {
+  const ConvexShape& a = *f.a;
+  const ConvexShape& b = *f.b;
+  const float margins = margin_of(a) + margin_of(b);
+  const float tol = opt.touch_tolerance * f.scale;
+  const float depth = e.depth + margins;
+  const vec3 sa = e.point_a + e.normal * margin_of(a), sb = e.point_b - e.normal * margin_of(b);
+  ConvexStatus st = depth <= tol ? ConvexStatus::touching : ConvexStatus::intersecting;
+  if (!e.converged) st = ConvexStatus::iteration_limit;
+  const float out = mode == Mode::penetration || st != ConvexStatus::intersecting ? -depth : 0.0f;
+  return finish(pa, st, out, e.normal, sa, sb, g.iterations + e.iterations);
+}
+
 // The result from GJK's end state (shared by the scalar query and the batch calls, so both
 // give the same bits from the same state).
 ConvexResult conclude(const ConvexPose& pa, const PairFrame& f, const GjkOut& g, const ConvexQueryOptions& opt,
@@ -489,15 +510,8 @@ ConvexResult conclude(const ConvexPose& pa, const PairFrame& f, const GjkOut& g,
   if (mode != Mode::penetration && (g.full || margins > tol)) {
     return finish(pa, ConvexStatus::intersecting, 0.0f, vec3{}, wa, wb, g.iterations);
   }
-  const EpaOutcome e = epa(f, g.simplex(), opt.max_epa_iterations);
-  const float depth = e.depth + margins;
-  const vec3 sa = e.point_a + e.normal * margin_of(a), sb = e.point_b - e.normal * margin_of(b);
-  ConvexStatus st = depth <= tol ? ConvexStatus::touching : ConvexStatus::intersecting;
-  if (!e.converged) st = ConvexStatus::iteration_limit;
-  const float out = mode == Mode::penetration || st != ConvexStatus::intersecting ? -depth : 0.0f;
-  return finish(pa, st, out, e.normal, sa, sb, g.iterations + e.iterations);
+  return conclude_epa(pa, f, g, opt, mode, epa(f, g.simplex(), opt.max_epa_iterations));
 }
-
 // GJK's boolean exit (the first separating axis ends the loop): the intersect query, and the
 // penetration query when the caller has no use for a separated pair's distance.
 bool stops_early(Mode mode, const ConvexQueryOptions& opt) {
@@ -591,6 +605,12 @@ void load_pair(const ConvexBoxPairs& p, std::size_t i, const BoxGjkBlock& blk, s
 struct BoxBatchState {
   BoxGjkBlock block;
   BoxGjkWork work;
+  // A block's pairs that need EPA, run together (epa_boxes) after the block's other pairs.
+  BoxBatchPair epa_pair[BoxGjkBlock::kMax];
+  const PairFrame* epa_frame[BoxGjkBlock::kMax];
+  Simplex epa_start[BoxGjkBlock::kMax];
+  EpaOutcome epa_out[BoxGjkBlock::kMax];
+  std::size_t epa_index[BoxGjkBlock::kMax];
 };
 
 BoxBatchState& box_batch_state() {
@@ -653,12 +673,14 @@ ConvexStatus box_intersect_scalar(BoxBatchPair& q, const ConvexQueryOptions& opt
 // the others go through conclude (EPA) or the scalar query.
 void box_result_batch(const ConvexBoxPairs& p, std::size_t count, ConvexResult* out, const ConvexQueryOptions& opt,
                       Mode mode) {
-  BoxBatchPair q;
   if (!lanes_pay()) {
+    BoxBatchPair q;
     for (std::size_t i = 0; i < count; ++i) load_pair_scalar(p, i, q), out[i] = query(q.a, q.pa, q.b, q.pb, opt, mode);
     return;
   }
+  BoxBatchState& st = box_batch_state();
   box_batch(p, count, opt, mode, false, [&](std::size_t base, std::size_t end, const BoxGjkBlock& blk) {
+    std::size_t ne = 0;
     for (std::size_t i = base; i < end; ++i) {
       const std::size_t k = i - base;
       if (blk.code[k] == BoxGjkBlock::kDone && blk.done[k] == 1.0f) {
@@ -671,8 +693,20 @@ void box_result_batch(const ConvexBoxPairs& p, std::size_t count, ConvexResult* 
         r.iterations = blk.iterations[k];
         continue;
       }
-      load_pair(p, i, blk, k, q);
-      out[i] = q.scalar ? query(q.a, q.pa, q.b, q.pb, opt, mode) : conclude(q.pa, q.f, q.g, opt, mode);
+      BoxBatchPair& e = st.epa_pair[ne];
+      load_pair(p, i, blk, k, e);
+      if (e.scalar) {
+        out[i] = query(e.a, e.pa, e.b, e.pb, opt, mode);
+      } else if (needs_epa(e.f, e.g, opt, mode)) {
+        st.epa_frame[ne] = &e.f, st.epa_start[ne] = e.g.simplex(), st.epa_index[ne] = i, ++ne;
+      } else {
+        out[i] = conclude(e.pa, e.f, e.g, opt, mode);
+      }
+    }
+    epa_boxes(st.epa_frame, st.epa_start, ne, opt.max_epa_iterations, st.epa_out);
+    for (std::size_t j = 0; j < ne; ++j) {
+      const BoxBatchPair& e = st.epa_pair[j];
+      out[st.epa_index[j]] = conclude_epa(e.pa, e.f, e.g, opt, mode, st.epa_out[j]);
     }
   });
 }

@@ -1,0 +1,70 @@
+// epa_lanes.hpp's kernels at this translation unit's SIMD level. Lane k computes what the
+// scalar code computes for job k, operation for operation (no FMA, the same association),
+// so every level gives the same bits.
+#include "geometry/epa_lanes.hpp"
+
+#include "core/lanes.hpp"
+
+namespace gyro::GYRO_ARCH_NS {
+namespace {
+
+// Polytope::add_face's plane: e1 = b - a, e2 = c - a, n = cross(e1, e2); a sliver when
+// |n|^2 <= 1e-12 |e1|^2 |e2|^2 or |n|^2 is not positive; else normalized(n) (rescaled by
+// 2^100 or 2^-100 outside [2^-100, 2^100]) and d = dot(n, a).
+template <class L> inline void plane(EpaPlaneJobs& j, std::size_t i) {
+  const L ax = load<L>(j.a[0] + i), ay = load<L>(j.a[1] + i), az = load<L>(j.a[2] + i);
+  const L e1x = load<L>(j.b[0] + i) - ax, e1y = load<L>(j.b[1] + i) - ay, e1z = load<L>(j.b[2] + i) - az;
+  const L e2x = load<L>(j.c[0] + i) - ax, e2y = load<L>(j.c[1] + i) - ay, e2z = load<L>(j.c[2] + i) - az;
+  const L nx = e1y * e2z - e1z * e2y, ny = e1z * e2x - e1x * e2z, nz = e1x * e2y - e1y * e2x;
+  const L nn = nx * nx + ny * ny + nz * nz;
+  const L ee = (e1x * e1x + e1y * e1y + e1z * e1z) * (e2x * e2x + e2y * e2y + e2z * e2z);
+  const auto sliver = !(nn > L(1e-12f) * ee) || !(nn > L(0.0f));
+  const auto small = nn < L(0x1p-100f), big = nn > L(0x1p+100f);
+  const L k = select(small, L(0x1p+100f), L(0x1p-100f));
+  const L sx = select(small || big, nx * k, nx), sy = select(small || big, ny * k, ny),
+          sz = select(small || big, nz * k, nz);
+  const L sq = select(small || big, sx * sx + sy * sy + sz * sz, nn);
+  const L len = sqrt(sq);
+  const L zero(0.0f);
+  const L ux = select(sliver, zero, sx / len), uy = select(sliver, zero, sy / len), uz = select(sliver, zero, sz / len);
+  store(j.n[0] + i, ux), store(j.n[1] + i, uy), store(j.n[2] + i, uz);
+  store(j.d + i, select(sliver, zero, ux * ax + uy * ay + uz * az));
+  store(j.sliver + i, select(sliver, L(1.0f), zero));
+}
+
+// signed_by(h, d): h, negated unless d >= 0.
+template <class L> inline L signed_by(L h, L d) { return select(d >= L(0.0f), h, -h); }
+
+// PairFrame::support for two boxes (cores): A's vertex along d, B's along -d in B's frame,
+// taken to A's frame as lb * rot + pos.
+template <class L> inline void box_support(EpaBoxSlots& s, std::size_t i) {
+  const L dx = load<L>(s.dir[0] + i), dy = load<L>(s.dir[1] + i), dz = load<L>(s.dir[2] + i);
+  const L pax = signed_by(load<L>(s.ha[0] + i), dx), pay = signed_by(load<L>(s.ha[1] + i), dy),
+          paz = signed_by(load<L>(s.ha[2] + i), dz);
+  L r[9];
+  for (int q = 0; q < 9; ++q) r[q] = load<L>(s.rot[q] + i);
+  const L db0 = -(dx * r[0] + dy * r[1] + dz * r[2]);
+  const L db1 = -(dx * r[3] + dy * r[4] + dz * r[5]);
+  const L db2 = -(dx * r[6] + dy * r[7] + dz * r[8]);
+  const L lx = signed_by(load<L>(s.hb[0] + i), db0), ly = signed_by(load<L>(s.hb[1] + i), db1),
+          lz = signed_by(load<L>(s.hb[2] + i), db2);
+  const L pbx = (lx * r[0] + ly * r[3]) + lz * r[6] + load<L>(s.pos[0] + i);
+  const L pby = (lx * r[1] + ly * r[4]) + lz * r[7] + load<L>(s.pos[1] + i);
+  const L pbz = (lx * r[2] + ly * r[5]) + lz * r[8] + load<L>(s.pos[2] + i);
+  store(s.a[0] + i, pax), store(s.a[1] + i, pay), store(s.a[2] + i, paz);
+  store(s.b[0] + i, pbx), store(s.b[1] + i, pby), store(s.b[2] + i, pbz);
+  store(s.w[0] + i, pax - pbx), store(s.w[1] + i, pay - pby), store(s.w[2] + i, paz - pbz);
+}
+
+}  // namespace
+
+GYRO_FLATTEN void epa_planes(EpaPlaneJobs& j, std::size_t count) {
+  for_lanes(0, count, [&](auto tag, std::size_t i) { plane<decltype(tag)>(j, i); });
+}
+
+GYRO_FLATTEN void epa_box_support(EpaBoxSlots& s) {
+  static_assert(EpaBoxSlots::kSlots % width_v<Wide> == 0, "whole vectors");
+  for (std::size_t i = 0; i < EpaBoxSlots::kSlots; i += width_v<Wide>) box_support<Wide>(s, i);
+}
+
+}  // namespace gyro::GYRO_ARCH_NS
