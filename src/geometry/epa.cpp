@@ -61,11 +61,23 @@ struct Polytope {
   // data-dependent branch (the face scan's compound test mispredicted about 23 times per
   // EPA call, and float selects became branches).
   uint32_t key[kMaxFaces + 3];
+  // epa_boxes: the slot's column of EpaClosest's distances (stride kSlots), kept instead of
+  // key; null in epa().
+  float* lane_key = nullptr;
+  // epa_boxes: the slot's column of EpaBoxSlots' vertices (vw), kept beside wx, wy, wz for
+  // the lanes' repeat test; null in epa().
+  float* lane_w = nullptr;
   int nv = 0, nf = 0;
   int horizon_face[kMaxFaces], horizon_edge[kMaxFaces];
   int nh = 0;
 
-  void set_column(int i) { wx[i] = vert[i].w.x, wy[i] = vert[i].w.y, wz[i] = vert[i].w.z; }
+  void set_column(int i) {
+    wx[i] = vert[i].w.x, wy[i] = vert[i].w.y, wz[i] = vert[i].w.z;
+    if (lane_w) {
+      constexpr int kCoord = int(EpaBoxSlots::kVerts * EpaBoxSlots::kSlots), kRow = int(EpaBoxSlots::kSlots);
+      lane_w[i * kRow] = vert[i].w.x, lane_w[kCoord + i * kRow] = vert[i].w.y, lane_w[2 * kCoord + i * kRow] = vert[i].w.z;
+    }
+  }
   void push_vertex(const SupportPoint& s) { vert[nv] = s, set_column(nv), ++nv; }
 
   // A face with its corners and no neighbours yet; its plane comes from add_face or, for
@@ -78,10 +90,12 @@ struct Polytope {
     return nf++;
   }
 
+  // The lanes' plane for face g (epa_boxes only: the distance goes to lane_key, +inf where
+  // add_face's key is kNone, which orders the faces as the keys do).
   void set_plane(int g, const vec3& n, float d, bool sliver) {
     Face& f = face[g];
     f.n = n, f.d = d, f.sliver = sliver;
-    key[g] = !sliver && d < kInf ? face_key(d) : kNone;
+    lane_key[g * int(EpaClosest::kSlots)] = !sliver && d < kInf ? d : kInf;
   }
 
   // The face's plane from the columns, in scalars: the same operations, in the same order,
@@ -108,7 +122,10 @@ struct Polytope {
     return g;
   }
 
-  void kill(int g) { face[g].dead = true, key[g] = kNone; }
+  void kill(int g) {
+    face[g].dead = true, key[g] = kNone;
+    if (lane_key) lane_key[g * int(EpaClosest::kSlots)] = kInf;
+  }
 
   // The live, trusted face closest to the origin; ties go to the lowest index (-0 and +0
   // tie, as they would in a float scan). -1 if none. Four interleaved scans (faces f with
@@ -341,21 +358,23 @@ bool begin(Polytope& p, const PairFrame& pair, const Simplex& start, Run& r, Add
   return true;
 }
 
-// The loop's first half: the closest face (every plane set). false: the loop ends here.
-bool select_face(Polytope& p, Run& r, uint32_t max_iterations) {
-  r.best = p.closest();
+// The loop's first half, given the closest face (p.closest() once every plane is set).
+// false: the loop ends here.
+bool select_face(int best, Run& r, uint32_t max_iterations) {
+  r.best = best;
   return r.best >= 0 && r.it < max_iterations;  // best < 0 only where every face is a sliver or overflowed
 }
 
 // The second half: s is the support along the closest face's normal. Adds the vertex and
 // the fan of new faces (planes through add); false: the loop ends (converged or stuck).
-template <class AddFace> bool expand(Polytope& p, Run& r, const SupportPoint& s, AddFace&& add) {
+// repeat: whether s.w is a vertex already (p.has_vertex).
+template <class AddFace> bool expand(Polytope& p, Run& r, const SupportPoint& s, bool repeat, AddFace&& add) {
   const Face& bf = p.face[r.best];
   if (dot(s.w, bf.n) - bf.d <= r.tol) {
     r.converged = true;
     return false;
   }
-  if (p.has_vertex(s.w)) {  // nothing new in this direction: the face is on the boundary
+  if (repeat) {  // nothing new in this direction: the face is on the boundary
     r.converged = true;
     return false;
   }
@@ -457,7 +476,9 @@ EpaOutcome epa(const PairFrame& pair, const Simplex& start, uint32_t max_iterati
   Run r;
   auto add = [&](int a, int b, int c) { return p.add_face(a, b, c); };
   if (!begin(p, pair, start, r, add)) return flat_outcome(start, r);
-  while (select_face(p, r, max_iterations) && expand(p, r, pair.support(p.face[r.best].n), add)) {
+  while (select_face(p.closest(), r, max_iterations)) {
+    const SupportPoint s = pair.support(p.face[r.best].n);
+    if (!expand(p, r, s, p.has_vertex(s.w), add)) break;
   }
   return outcome(p, r);
 }
@@ -474,6 +495,7 @@ struct BoxSlots {
   bool ended[kSlots];  // the loop has ended; the outcome waits for the pending planes
   EpaBoxSlots lanes;
   EpaPlaneJobs planes;
+  EpaClosest closest;
   int pending = 0;
   int16_t plane_slot[EpaPlaneJobs::kMax];
   int16_t plane_face[EpaPlaneJobs::kMax];
@@ -509,10 +531,13 @@ void epa_boxes(const PairFrame* const* pairs, const Simplex* starts, std::size_t
   BoxSlots& S = *state;
   epa_planes_fn* const planes = GYRO_DISPATCH(epa_planes);
   epa_box_support_fn* const support = GYRO_DISPATCH(epa_box_support);
+  epa_closest_fn* const closest = GYRO_DISPATCH(epa_closest);
+  for (int k = 0; k < BoxSlots::kSlots; ++k) S.poly[k].lane_key = &S.closest.d[0][k], S.poly[k].lane_w = &S.lanes.vw[0][0][k];
   constexpr int kSlots = BoxSlots::kSlots;
   // A slot's faces number at most kMaxFaces; flushing before a slot could overflow the list
   // keeps every pending plane in it.
   static_assert(EpaPlaneJobs::kMax >= 2 * kMaxFaces, "room for one more slot's faces");
+  static_assert(EpaClosest::kFaces >= kMaxFaces && EpaBoxSlots::kVerts >= kMaxVerts, "a row per face and vertex");
   for (int k = 0; k < kSlots; ++k) S.job[k] = -1, S.ended[k] = false;
   S.pending = 0;
   std::size_t next = 0;
@@ -539,11 +564,17 @@ void epa_boxes(const PairFrame* const* pairs, const Simplex* starts, std::size_t
     S.flush(planes);
     // Every plane is set: ended slots give their outcome; the others select a face and ask
     // for a support along its normal.
+    int rows = 0;
+    for (int k = 0; k < kSlots; ++k) {
+      const int nf = S.poly[k].nf & -int((S.job[k] >= 0) & !S.ended[k]);  // 0 for a slot not searching
+      S.closest.nf[k] = float(nf), rows = nf > rows ? nf : rows;
+    }
+    closest(S.closest, std::size_t(rows));
     bool any = false;
     for (int k = 0; k < kSlots; ++k) {
       if (S.job[k] < 0) continue;
       Polytope& p = S.poly[k];
-      if (!S.ended[k] && select_face(p, S.run[k], max_iterations)) {
+      if (!S.ended[k] && select_face(int(S.closest.best[k]), S.run[k], max_iterations)) {
         const vec3& n = p.face[S.run[k].best].n;
         S.lanes.dir[0][k] = n.x, S.lanes.dir[1][k] = n.y, S.lanes.dir[2][k] = n.z;
         any = true;
@@ -553,14 +584,19 @@ void epa_boxes(const PairFrame* const* pairs, const Simplex* starts, std::size_t
       S.job[k] = -1, --busy;
     }
     if (!any) continue;
-    support(S.lanes);
+    int verts = 0;
+    for (int k = 0; k < kSlots; ++k) {
+      const int nv = S.poly[k].nv & -int(S.job[k] >= 0);
+      S.lanes.nv[k] = float(nv), verts = nv > verts ? nv : verts;
+    }
+    support(S.lanes, std::size_t(verts));
     for (int k = 0; k < kSlots; ++k) {
       if (S.job[k] < 0) continue;
       const SupportPoint s{{S.lanes.w[0][k], S.lanes.w[1][k], S.lanes.w[2][k]},
                            {S.lanes.a[0][k], S.lanes.a[1][k], S.lanes.a[2][k]},
                            {S.lanes.b[0][k], S.lanes.b[1][k], S.lanes.b[2][k]}};
       if (S.pending > int(EpaPlaneJobs::kMax) - kMaxFaces) S.flush(planes);
-      S.ended[k] = !expand(S.poly[k], S.run[k], s, [&](int a, int b, int c) { return S.add(k, a, b, c); });
+      S.ended[k] = !expand(S.poly[k], S.run[k], s, S.lanes.repeat[k] != 0.0f, [&](int a, int b, int c) { return S.add(k, a, b, c); });
     }
   }
 }

@@ -37,7 +37,7 @@ template <class L> inline L signed_by(L h, L d) { return select(d >= L(0.0f), h,
 
 // PairFrame::support for two boxes (cores): A's vertex along d, B's along -d in B's frame,
 // taken to A's frame as lb * rot + pos.
-template <class L> inline void box_support(EpaBoxSlots& s, std::size_t i) {
+template <class L> inline void box_support(EpaBoxSlots& s, std::size_t i, std::size_t rows) {
   const L dx = load<L>(s.dir[0] + i), dy = load<L>(s.dir[1] + i), dz = load<L>(s.dir[2] + i);
   const L pax = signed_by(load<L>(s.ha[0] + i), dx), pay = signed_by(load<L>(s.ha[1] + i), dy),
           paz = signed_by(load<L>(s.ha[2] + i), dz);
@@ -53,18 +53,43 @@ template <class L> inline void box_support(EpaBoxSlots& s, std::size_t i) {
   const L pbz = (lx * r[2] + ly * r[5]) + lz * r[8] + load<L>(s.pos[2] + i);
   store(s.a[0] + i, pax), store(s.a[1] + i, pay), store(s.a[2] + i, paz);
   store(s.b[0] + i, pbx), store(s.b[1] + i, pby), store(s.b[2] + i, pbz);
-  store(s.w[0] + i, pax - pbx), store(s.w[1] + i, pay - pby), store(s.w[2] + i, paz - pbz);
+  const L wx = pax - pbx, wy = pay - pby, wz = paz - pbz;
+  store(s.w[0] + i, wx), store(s.w[1] + i, wy), store(s.w[2] + i, wz);
+  const L nv = load<L>(s.nv + i);
+  auto hit = L(0.0f) > L(1.0f);
+  for (std::size_t v = 0; v < rows; ++v)
+    hit = hit || ((L(float(v)) < nv) && (load<L>(s.vw[0][v] + i) == wx) && (load<L>(s.vw[1][v] + i) == wy) &&
+                  (load<L>(s.vw[2][v] + i) == wz));
+  store(s.repeat + i, select(hit, L(1.0f), L(0.0f)));
 }
 
 }  // namespace
+
+GYRO_FLATTEN void epa_closest(EpaClosest& c, std::size_t rows) {
+  // Rows outside, vectors inside: the vectors' min chains are independent, so they overlap.
+  constexpr std::size_t kVectors = EpaClosest::kSlots / width_v<Wide>;
+  static_assert(EpaClosest::kSlots % width_v<Wide> == 0, "whole vectors");
+  Wide nf[kVectors], m[kVectors], at[kVectors];
+  for (std::size_t q = 0; q < kVectors; ++q)
+    nf[q] = load<Wide>(c.nf + q * width_v<Wide>), m[q] = Wide(__builtin_huge_valf()), at[q] = Wide(-1.0f);
+  for (std::size_t f = 0; f < rows; ++f) {
+    const Wide row = Wide(float(f));
+    for (std::size_t q = 0; q < kVectors; ++q) {
+      const Wide k = load<Wide>(c.d[f] + q * width_v<Wide>);
+      const auto lt = (row < nf[q]) && (k < m[q]);
+      m[q] = select(lt, k, m[q]), at[q] = select(lt, row, at[q]);
+    }
+  }
+  for (std::size_t q = 0; q < kVectors; ++q) store(c.best + q * width_v<Wide>, at[q]);
+}
 
 GYRO_FLATTEN void epa_planes(EpaPlaneJobs& j, std::size_t count) {
   for_lanes(0, count, [&](auto tag, std::size_t i) { plane<decltype(tag)>(j, i); });
 }
 
-GYRO_FLATTEN void epa_box_support(EpaBoxSlots& s) {
+GYRO_FLATTEN void epa_box_support(EpaBoxSlots& s, std::size_t rows) {
   static_assert(EpaBoxSlots::kSlots % width_v<Wide> == 0, "whole vectors");
-  for (std::size_t i = 0; i < EpaBoxSlots::kSlots; i += width_v<Wide>) box_support<Wide>(s, i);
+  for (std::size_t i = 0; i < EpaBoxSlots::kSlots; i += width_v<Wide>) box_support<Wide>(s, i, rows);
 }
 
 }  // namespace gyro::GYRO_ARCH_NS

@@ -25,13 +25,29 @@ using epa_planes_fn = void(EpaPlaneJobs&, std::size_t count);
 GYRO_KERNEL(epa_planes, epa_planes_fn)
 
 /// Box pairs in slots (B in A's frame: rot rows are B's axes, pos its origin), one support
-/// request per slot along dir; out: the support point w = a - b and its points a and b.
+/// request per slot along dir; out: the support point w = a - b, its points a and b, and
+/// whether w is one of the polytope's vertices already (vw[c][v][k]: coordinate c of slot
+/// k's vertex v; nv[k] of them), as Polytope::has_vertex says.
 struct EpaBoxSlots {
-  static constexpr std::size_t kSlots = 16;
+  static constexpr std::size_t kSlots = 16, kVerts = 128;
   float ha[3][kSlots], hb[3][kSlots], rot[9][kSlots], pos[3][kSlots], dir[3][kSlots];
-  float w[3][kSlots], a[3][kSlots], b[3][kSlots];
+  float vw[3][kVerts][kSlots], nv[kSlots];
+  float w[3][kSlots], a[3][kSlots], b[3][kSlots], repeat[kSlots];
 };
-using epa_box_support_fn = void(EpaBoxSlots&);
+/// rows: the largest nv.
+using epa_box_support_fn = void(EpaBoxSlots&, std::size_t rows);
 GYRO_KERNEL(epa_box_support, epa_box_support_fn)
+
+/// The closest-face search of the slots' polytopes. d[f][k]: face f's distance in slot k, +inf
+/// where the face is dead or its plane not trusted; nf[k]: slot k's face count (0 for a slot
+/// with no search). best[k]: the first face with the least distance (ties to the lowest
+/// index, -0 tying +0, as Polytope::closest()), or -1 if none is below +inf.
+struct EpaClosest {
+  static constexpr std::size_t kSlots = EpaBoxSlots::kSlots, kFaces = 256;
+  float d[kFaces][kSlots];
+  float nf[kSlots], best[kSlots];
+};
+using epa_closest_fn = void(EpaClosest&, std::size_t rows);
+GYRO_KERNEL(epa_closest, epa_closest_fn)
 
 }  // namespace gyro
