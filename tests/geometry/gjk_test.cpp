@@ -644,6 +644,67 @@ TEST(GjkFaceAxes, ProbeVerdictsMatchConvergedGjk) {
   std::printf("[ face axes ] %zu separated, %zu decided before GJK's second iteration\n", separated, first_exits);
 }
 
+// The batch runs EPA on up to 16 polytopes side by side (epa_boxes), with the supports, the
+// planes, the closest-face search and the repeat test in lanes. Its outcome must be the
+// scalar EPA's bit for bit on the hard cases too: 100:1 plates and 100:1 size ratios
+// (sliver faces, coplanar closest faces), axis-aligned stacks (simplices of fewer than four
+// points mixed into the queue), and an EPA iteration limit that many pairs reach.
+TEST(GjkBatch, SideBySideEpaMatchesScalarOnHardPairs) {
+  SplitMix64 rng(2026);
+  constexpr std::size_t n = 3001;
+  testing::BoxPairs p;
+  for (testing::BoxSet* s : {&p.a, &p.b}) {
+    for (auto* v : {&s->cx, &s->cy, &s->cz, &s->hx, &s->hy, &s->hz}) v->resize(n);
+    for (auto& v : s->r) v.resize(n);
+  }
+  auto put = [](testing::BoxSet& s, std::size_t i, const vec3& c, const vec3& h, const mat3& rot) {
+    s.cx[i] = c.x, s.cy[i] = c.y, s.cz[i] = c.z, s.hx[i] = h.x, s.hy[i] = h.y, s.hz[i] = h.z;
+    for (int k = 0; k < 3; ++k)
+      for (int c2 = 0; c2 < 3; ++c2) s.r[3 * c2 + k][i] = rot.m[k][c2];  // pose_of's inverse
+  };
+  for (std::size_t i = 0; i < n; ++i) {
+    const int kind = int(i % 4);
+    const float u = float(rng.u());
+    vec3 ha{0.2f + float(rng.u()), 0.2f + float(rng.u()), 0.2f + float(rng.u())};
+    vec3 hb{0.2f + float(rng.u()), 0.2f + float(rng.u()), 0.2f + float(rng.u())};
+    mat3 ra = random_rotation(rng), rb = random_rotation(rng);
+    vec3 cb{float(rng.u() - 0.5), float(rng.u() - 0.5), float(rng.u() - 0.5)};
+    if (kind == 1) ha.y *= 0.01f;                         // a 100:1 plate
+    if (kind == 2) hb = hb * 0.01f, cb = cb * 2.0f;       // a 100:1 size ratio
+    if (kind == 3) {                                      // axis-aligned stacks: flat contacts
+      ra = rb = mat3{};
+      cb = {0.5f * (u - 0.5f), ha.y + hb.y - 0.01f * u, 0.0f};
+    }
+    put(p.a, i, {0.0f, 0.0f, 0.0f}, ha, ra);
+    put(p.b, i, cb, hb, rb);
+  }
+  const ConvexBoxPairs pairs = soa_view(p);
+  ConvexQueryOptions limited;
+  limited.max_epa_iterations = 2;
+  for (const ConvexQueryOptions& opt : {ConvexQueryOptions{}, limited}) {
+    std::vector<ConvexResult> ref(n);
+    std::size_t epa_runs = 0, limits = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      ref[i] = convex_penetration(raw_box(p.a, i), pose_of(p.a, i), raw_box(p.b, i), pose_of(p.b, i), opt);
+      epa_runs += ref[i].distance <= 0.0f, limits += ref[i].status == ConvexStatus::iteration_limit;
+    }
+    EXPECT_GT(epa_runs, 2000u);
+    if (opt.max_epa_iterations == 2) {
+      EXPECT_GT(limits, 500u);
+    }
+    for (SimdLevel level : kLevels) {
+      if (!simd_level_available(level)) continue;
+      set_simd_level(level);
+      std::vector<ConvexResult> out(n);
+      convex_penetration_batch(pairs, n, out.data(), opt);
+      std::size_t differ = 0;
+      for (std::size_t i = 0; i < n; ++i) differ += std::memcmp(&out[i], &ref[i], sizeof(ConvexResult)) != 0;
+      EXPECT_EQ(differ, 0u) << simd_level_name(level) << " max_epa_iterations " << opt.max_epa_iterations;
+    }
+    set_simd_level(SimdLevel::automatic);
+  }
+}
+
 TEST(GjkBatch, EmptyBatchWritesNothing) {
   const testing::BoxPairs p = testing::n1_pairs(1);
   const ConvexBoxPairs pairs = soa_view(p);
