@@ -489,10 +489,10 @@ namespace {
 // faces whose planes are pending.
 struct BoxSlots {
   static constexpr int kSlots = int(EpaBoxSlots::kSlots);
+  static_assert(kSlots < 32, "slot sets are 32-bit masks");
   Polytope poly[kSlots];
   Run run[kSlots];
-  int job[kSlots];   // the pair in the slot, -1 if free
-  bool ended[kSlots];  // the loop has ended; the outcome waits for the pending planes
+  int job[kSlots];  // the pair in a busy slot
   EpaBoxSlots lanes;
   EpaPlaneJobs planes;
   EpaClosest closest;
@@ -538,16 +538,19 @@ void epa_boxes(const PairFrame* const* pairs, const Simplex* starts, std::size_t
   // keeps every pending plane in it.
   static_assert(EpaPlaneJobs::kMax >= 2 * kMaxFaces, "room for one more slot's faces");
   static_assert(EpaClosest::kFaces >= kMaxFaces && EpaBoxSlots::kVerts >= kMaxVerts, "a row per face and vertex");
-  for (int k = 0; k < kSlots; ++k) S.job[k] = -1, S.ended[k] = false;
   S.pending = 0;
   std::size_t next = 0;
-  int busy = 0;
+  // Slot sets as bit masks, walked lowest slot first: the loops run over the slots in a set
+  // instead of testing every slot (those tests mispredicted as the occupancy changed).
+  uint32_t busy = 0, ended = 0;
+  auto each = [](uint32_t set, auto&& body) {
+    for (; set != 0; set &= set - 1u) body(__builtin_ctz(set));
+  };
   for (;;) {
     // Fill free slots with the next pairs (a simplex of fewer than 4 points runs epa()).
-    for (int k = 0; k < kSlots && next < count; ++k) {
-      if (S.job[k] >= 0) continue;
+    each(~busy & ((1u << kSlots) - 1u), [&](int k) {
       while (next < count && starts[next].n < 4) out[next] = epa(*pairs[next], starts[next], max_iterations), ++next;
-      if (next == count) break;
+      if (next == count) return;
       const std::size_t i = next++;
       const PairFrame& f = *pairs[i];
       if (S.pending + 4 > int(EpaPlaneJobs::kMax) - kMaxFaces) S.flush(planes);
@@ -558,46 +561,46 @@ void epa_boxes(const PairFrame* const* pairs, const Simplex* starts, std::size_t
         S.lanes.pos[c][k] = f.pos_b[c];
         for (int r = 0; r < 3; ++r) S.lanes.rot[3 * r + c][k] = f.rot_b.m[r][c];
       }
-      S.job[k] = int(i), S.ended[k] = false, ++busy;
-    }
+      S.job[k] = int(i), busy |= 1u << k;
+    });
     if (busy == 0) break;
     S.flush(planes);
     // Every plane is set: ended slots give their outcome; the others select a face and ask
     // for a support along its normal.
+    each(ended, [&](int k) { out[S.job[k]] = outcome(S.poly[k], S.run[k]); });
+    busy &= ~ended, ended = 0;
     int rows = 0;
     for (int k = 0; k < kSlots; ++k) {
-      const int nf = S.poly[k].nf & -int((S.job[k] >= 0) & !S.ended[k]);  // 0 for a slot not searching
+      const int nf = S.poly[k].nf & -int(busy >> k & 1u);  // 0 for a free slot
       S.closest.nf[k] = float(nf), rows = nf > rows ? nf : rows;
     }
     closest(S.closest, std::size_t(rows));
-    bool any = false;
-    for (int k = 0; k < kSlots; ++k) {
-      if (S.job[k] < 0) continue;
+    each(busy, [&](int k) {
       Polytope& p = S.poly[k];
-      if (!S.ended[k] && select_face(int(S.closest.best[k]), S.run[k], max_iterations)) {
+      if (select_face(int(S.closest.best[k]), S.run[k], max_iterations)) {
         const vec3& n = p.face[S.run[k].best].n;
         S.lanes.dir[0][k] = n.x, S.lanes.dir[1][k] = n.y, S.lanes.dir[2][k] = n.z;
-        any = true;
-        continue;
+        return;
       }
       out[S.job[k]] = outcome(p, S.run[k]);
-      S.job[k] = -1, --busy;
-    }
-    if (!any) continue;
+      busy &= ~(1u << k);
+    });
+    if (busy == 0) continue;
     int verts = 0;
     for (int k = 0; k < kSlots; ++k) {
-      const int nv = S.poly[k].nv & -int(S.job[k] >= 0);
+      const int nv = S.poly[k].nv & -int(busy >> k & 1u);
       S.lanes.nv[k] = float(nv), verts = nv > verts ? nv : verts;
     }
     support(S.lanes, std::size_t(verts));
-    for (int k = 0; k < kSlots; ++k) {
-      if (S.job[k] < 0) continue;
+    each(busy, [&](int k) {
       const SupportPoint s{{S.lanes.w[0][k], S.lanes.w[1][k], S.lanes.w[2][k]},
                            {S.lanes.a[0][k], S.lanes.a[1][k], S.lanes.a[2][k]},
                            {S.lanes.b[0][k], S.lanes.b[1][k], S.lanes.b[2][k]}};
       if (S.pending > int(EpaPlaneJobs::kMax) - kMaxFaces) S.flush(planes);
-      S.ended[k] = !expand(S.poly[k], S.run[k], s, S.lanes.repeat[k] != 0.0f, [&](int a, int b, int c) { return S.add(k, a, b, c); });
-    }
+      const bool more = expand(S.poly[k], S.run[k], s, S.lanes.repeat[k] != 0.0f,
+                               [&](int a, int b, int c) { return S.add(k, a, b, c); });
+      ended |= uint32_t(!more) << k;
+    });
   }
 }
 

@@ -605,12 +605,25 @@ void load_pair(const ConvexBoxPairs& p, std::size_t i, const BoxGjkBlock& blk, s
 struct BoxBatchState {
   BoxGjkBlock block;
   BoxGjkWork work;
-  // A block's pairs that need EPA, run together (epa_boxes) after the block's other pairs.
-  BoxBatchPair epa_pair[BoxGjkBlock::kMax];
-  const PairFrame* epa_frame[BoxGjkBlock::kMax];
-  Simplex epa_start[BoxGjkBlock::kMax];
-  EpaOutcome epa_out[BoxGjkBlock::kMax];
-  std::size_t epa_index[BoxGjkBlock::kMax];
+  // Pairs that need EPA, gathered over several blocks and run together (epa_boxes): the more
+  // pairs it has, the longer its slots stay full.
+  static constexpr std::size_t kEpaMax = 4 * BoxGjkBlock::kMax;
+  BoxBatchPair epa_pair[kEpaMax];
+  const PairFrame* epa_frame[kEpaMax];
+  Simplex epa_start[kEpaMax];
+  EpaOutcome epa_out[kEpaMax];
+  std::size_t epa_index[kEpaMax];
+  std::size_t epa_count = 0;
+
+  // Runs EPA on the gathered pairs and writes their results.
+  void run_epa(ConvexResult* out, const ConvexQueryOptions& opt, Mode mode) {
+    epa_boxes(epa_frame, epa_start, epa_count, opt.max_epa_iterations, epa_out);
+    for (std::size_t j = 0; j < epa_count; ++j) {
+      const BoxBatchPair& e = epa_pair[j];
+      out[epa_index[j]] = conclude_epa(e.pa, e.f, e.g, opt, mode, epa_out[j]);
+    }
+    epa_count = 0;
+  }
 };
 
 BoxBatchState& box_batch_state() {
@@ -679,8 +692,8 @@ void box_result_batch(const ConvexBoxPairs& p, std::size_t count, ConvexResult* 
     return;
   }
   BoxBatchState& st = box_batch_state();
+  st.epa_count = 0;
   box_batch(p, count, opt, mode, false, [&](std::size_t base, std::size_t end, const BoxGjkBlock& blk) {
-    std::size_t ne = 0;
     for (std::size_t i = base; i < end; ++i) {
       const std::size_t k = i - base;
       if (blk.code[k] == BoxGjkBlock::kDone && blk.done[k] == 1.0f) {
@@ -693,22 +706,20 @@ void box_result_batch(const ConvexBoxPairs& p, std::size_t count, ConvexResult* 
         r.iterations = blk.iterations[k];
         continue;
       }
-      BoxBatchPair& e = st.epa_pair[ne];
+      const std::size_t j = st.epa_count;
+      BoxBatchPair& e = st.epa_pair[j];
       load_pair(p, i, blk, k, e);
       if (e.scalar) {
         out[i] = query(e.a, e.pa, e.b, e.pb, opt, mode);
       } else if (needs_epa(e.f, e.g, opt, mode)) {
-        st.epa_frame[ne] = &e.f, st.epa_start[ne] = e.g.simplex(), st.epa_index[ne] = i, ++ne;
+        st.epa_frame[j] = &e.f, st.epa_start[j] = e.g.simplex(), st.epa_index[j] = i, st.epa_count = j + 1;
       } else {
         out[i] = conclude(e.pa, e.f, e.g, opt, mode);
       }
     }
-    epa_boxes(st.epa_frame, st.epa_start, ne, opt.max_epa_iterations, st.epa_out);
-    for (std::size_t j = 0; j < ne; ++j) {
-      const BoxBatchPair& e = st.epa_pair[j];
-      out[st.epa_index[j]] = conclude_epa(e.pa, e.f, e.g, opt, mode, st.epa_out[j]);
-    }
+    if (st.epa_count + BoxGjkBlock::kMax > BoxBatchState::kEpaMax) st.run_epa(out, opt, mode);  // room for a block
   });
+  st.run_epa(out, opt, mode);
 }
 
 }  // namespace
