@@ -64,9 +64,9 @@ Score score(const std::vector<double>& sep, std::size_t n, Hit hit_at, Depth dep
 }
 
 void emit(const char* library, const char* method, const char* simd, double ms, std::size_t n, const Score& s,
-          bool depth, bool dist, int reps, std::size_t limits = 0) {
+          bool depth, bool dist, int reps, std::size_t limits = 0, uint32_t threads = 1) {
   JsonLine line;
-  line.str("workload", "GJK").str("library", library).str("method", method).str("simd", simd).integer("threads", 1)
+  line.str("workload", "GJK").str("library", library).str("method", method).str("simd", simd).integer("threads", threads)
       .num("build_ms", 0).num("time_ms", ms, 5).num("throughput", double(n) / ms / 1e3, 5).str("unit", "Mpairs/s")
       .integer("hits", int64_t(s.hits)).num("checksum", depth ? s.depth_sum : 0.0, 10)
       .num("error", double(s.disagree)).str("error_metric", "verdicts disagreeing with binary64 SAT")
@@ -123,8 +123,11 @@ void run_gyro(const BoxPairs& p, const std::vector<double>& sep, std::size_t n, 
 }
 
 // The box-pair batches (convex_intersect_batch, convex_distance_batch,
-// convex_penetration_batch) over the SoA box columns, per SIMD level: their results are the
-// scalar queries' bit for bit at every level (a warning line says if the levels differ).
+// convex_penetration_batch) over the SoA box columns, per SIMD level, on one thread (the
+// peers' lines are one thread too): their results are the scalar queries' bit for bit at
+// every level (a warning line says if the levels differ). Then, where the process has more
+// threads, each batch again at the default level on all of them (the batches cut the pairs
+// into fixed chunks, so the bits are the same; a warning line says if not).
 void run_gyro_batch(const BoxPairs& p, const std::vector<double>& sep, std::size_t n, const Options& o) {
   ConvexBoxPairs pairs;
   auto fill = [](const BoxSet& s, const float* (&c)[3], const float* (&h)[3], const float* (&r)[9]) {
@@ -135,6 +138,8 @@ void run_gyro_batch(const BoxPairs& p, const std::vector<double>& sep, std::size
   };
   fill(p.a, pairs.a_center, pairs.a_half, pairs.a_rot);
   fill(p.b, pairs.b_center, pairs.b_half, pairs.b_rot);
+  const uint32_t threads = thread_count();
+  set_thread_count(1);
   std::vector<ConvexStatus> out(n), first;
   for (SimdLevel level : levels_to_run(o)) {
     set_simd_level(level);
@@ -178,6 +183,33 @@ void run_gyro_batch(const BoxPairs& p, const std::vector<double>& sep, std::size
     }
   }
   set_simd_level(SimdLevel::automatic);
+  set_thread_count(threads);
+  if (threads <= 1) return;
+  const char* level = simd_level_name(simd_level());
+  {
+    const double ms = median_ms(o.reps, [&] { convex_intersect_batch(pairs, n, out.data()); });
+    if (out != first) std::printf("# WARNING: gjk_intersect_batch verdicts differ between thread counts\n");
+    const Score s = score(
+        sep, n, [&](std::size_t i) { return overlapping(out[i]); }, [](std::size_t) { return 0.0; },
+        [](std::size_t) { return kNan; });
+    emit("gyro", "gjk_intersect_batch", level, ms, n, s, false, false, o.reps, 0, threads);
+  }
+  for (const auto& m : methods) {
+    ConvexQueryOptions opt;
+    opt.separated_distance = m.dist;
+    res_first.resize(n);
+    set_thread_count(1);  // one thread's answer, for the comparison
+    m.fn(pairs, n, res_first.data(), opt);
+    set_thread_count(threads);
+    const double ms = median_ms(o.reps, [&] { m.fn(pairs, n, res.data(), opt); });
+    if (std::memcmp(res.data(), res_first.data(), n * sizeof(ConvexResult)) != 0)
+      std::printf("# WARNING: %s results differ between thread counts\n", m.name);
+    const Score s = score(
+        sep, n, [&](std::size_t i) { return overlapping(res[i].status); },
+        [&](std::size_t i) { return -double(res[i].distance); },
+        [&](std::size_t i) { return m.dist ? double(res[i].distance) : kNan; });
+    emit("gyro", m.name, level, ms, n, s, m.depth, m.dist, o.reps, 0, threads);
+  }
 }
 
 // The C ABI's pair calls on the same pairs (arrays of gyro_convex_shape and gyro_convex_pose),

@@ -146,7 +146,7 @@ struct ConvexBoxPairs {
 /// convex_intersect(box A_i, box B_i).status for i in [0, count), written to out[i]: the
 /// same verdict, bit for bit, at every SIMD level (GJK runs over SIMD lanes, one pair per
 /// lane, with the scalar query's operations; see the box-pair batches below).
-/// Invalid pairs get ConvexStatus::invalid_input (and gyro::last_error() a message).
+/// Invalid pairs get ConvexStatus::invalid_input (and gyro::last_error() the first one's message).
 void convex_intersect_batch(const ConvexBoxPairs& pairs, std::size_t count, ConvexStatus* out,
                             const ConvexQueryOptions& options = {});
 
@@ -197,9 +197,14 @@ Status convex_hull_mass(const ConvexHull& hull, ConvexMass& out);
 // convex_intersect_batch above and the three calls below run GJK itself over SIMD lanes, one
 // box pair per lane through the whole iteration loop (each lane performs the scalar loop's
 // operations, so the lanes leave every pair with the scalar query's simplex, bit for bit);
-// the results are then formed, and EPA run where needed, with the scalar query's code.
-// out[i] is bit-identical to the scalar call on pair i at every SIMD level and thread count.
-// Invalid pairs get ConvexStatus::invalid_input (and gyro::last_error() a message).
+// the results are then formed, and EPA run where needed, with the scalar query's code (for
+// 16 pairs side by side, their supports and face planes over lanes too).
+// The pairs are cut into fixed chunks (1,024 pairs) that run over gyro's threads
+// (set_thread_count); out[i] is bit-identical to the scalar call on pair i at every SIMD
+// level and thread count. The batches allocate their lane state once per thread; where that
+// fails, the pairs run one at a time (same bits) and nothing is thrown.
+// Invalid pairs get ConvexStatus::invalid_input (and gyro::last_error(), on the calling
+// thread, the first invalid pair's message).
 
 /// convex_intersect(box A_i, box B_i) for i in [0, count), the whole result (the distance,
 /// normal and witnesses at GJK's exit), written to out[i].

@@ -14,6 +14,7 @@
 // Determinism: + - * / sqrt and comparisons only, in a fixed order; ties go to the lowest
 // index; no heap.
 #include "core/error.hpp"
+#include "core/parallel.hpp"
 #include "core/validate.hpp"
 #include "geometry/box_face_lanes.hpp"
 #include "geometry/convex_support.hpp"
@@ -22,6 +23,7 @@
 
 #include <bit>
 #include <memory>
+#include <new>
 
 namespace gyro {
 namespace detail {
@@ -817,14 +819,17 @@ ConvexResult convex_penetration(const ConvexShape& a, const ConvexPose& pa, cons
 
 namespace gyro {
 
-void convex_intersect_batch(const ConvexBoxPairs& p, std::size_t count, ConvexStatus* out,
-                            const ConvexQueryOptions& opt) {
-  detail::BoxBatchPair q;
-  if (!detail::lanes_pay()) {
-    for (std::size_t i = 0; i < count; ++i) detail::load_pair_scalar(p, i, q), out[i] = detail::box_intersect_scalar(q, opt);
+namespace detail {
+namespace {
+
+// convex_intersect_batch's statuses for pairs [0, count) of p, on the calling thread.
+void intersect_status_batch(const ConvexBoxPairs& p, std::size_t count, ConvexStatus* out, const ConvexQueryOptions& opt) {
+  BoxBatchPair q;
+  if (!lanes_pay()) {
+    for (std::size_t i = 0; i < count; ++i) load_pair_scalar(p, i, q), out[i] = box_intersect_scalar(q, opt);
     return;
   }
-  detail::box_batch(p, count, opt, detail::Mode::intersect, true,
+  box_batch(p, count, opt, Mode::intersect, true,
                     [&](std::size_t base, std::size_t end, const BoxGjkBlock& blk) {
     for (std::size_t i = base; i < end; ++i) {
       const std::size_t k = i - base;
@@ -847,25 +852,91 @@ void convex_intersect_batch(const ConvexBoxPairs& p, std::size_t count, ConvexSt
         out[i] = ConvexStatus::intersecting;
         continue;
       }
-      detail::load_pair(p, i, blk, k, q);
-      out[i] = q.scalar ? convex_intersect(q.a, q.pa, q.b, q.pb, opt).status : detail::box_intersect_status(q.f, q.g, opt);
+      load_pair(p, i, blk, k, q);
+      out[i] = q.scalar ? convex_intersect(q.a, q.pa, q.b, q.pb, opt).status : box_intersect_status(q.f, q.g, opt);
     }
   });
 }
 
+// The batches run in fixed chunks of pairs over the threads (parallel_for): a pair's result
+// never depends on its neighbours, so neither the chunks nor the thread count change a bit.
+// A chunk is a multiple of the lanes' block and holds several of epa_boxes' gatherings.
+constexpr std::size_t kBatchChunk = 8 * BoxGjkBlock::kMax;
+
+// p from pair b on: the columns advanced by b.
+ConvexBoxPairs from_pair(const ConvexBoxPairs& p, std::size_t b) {
+  ConvexBoxPairs q = p;
+  for (int k = 0; k < 3; ++k) q.a_center[k] += b, q.a_half[k] += b, q.b_center[k] += b, q.b_half[k] += b;
+  for (int k = 0; k < 9; ++k) q.a_rot[k] += b, q.b_rot[k] += b;
+  return q;
+}
+
+// run(view, n, out + b) over the chunks. A chunk whose lane state cannot be allocated runs
+// its pairs one at a time (scalar(i) for pair i: the same bits), so nothing escapes a worker
+// thread. Then the first invalid pair's message is made on the calling thread (invalid()
+// sets last_error() on the thread that meets the pair).
+template <class T, class Run, class Scalar, class Invalid>
+void batch_in_chunks(const ConvexBoxPairs& p, std::size_t count, T* out, Run&& run, Scalar&& scalar, Invalid&& invalid) {
+  parallel_for(count, kBatchChunk, [&](std::size_t b, std::size_t e) {
+    try {
+      run(from_pair(p, b), e - b, out + b);
+    } catch (const std::bad_alloc&) {
+      for (std::size_t i = b; i < e; ++i) out[i] = scalar(i);
+    }
+  });
+  for (std::size_t i = 0; i < count; ++i)
+    if (invalid(out[i])) {
+      (void)scalar(i);
+      break;
+    }
+}
+
+}  // namespace
+}  // namespace detail
+
+void convex_intersect_batch(const ConvexBoxPairs& p, std::size_t count, ConvexStatus* out,
+                            const ConvexQueryOptions& opt) {
+  detail::batch_in_chunks(
+      p, count, out,
+      [&](const ConvexBoxPairs& v, std::size_t n, ConvexStatus* o) { detail::intersect_status_batch(v, n, o, opt); },
+      [&](std::size_t i) {
+        detail::BoxBatchPair q;
+        detail::load_pair_scalar(p, i, q);
+        return detail::box_intersect_scalar(q, opt);
+      },
+      [](ConvexStatus st) { return st == ConvexStatus::invalid_input; });
+}
+
+namespace detail {
+namespace {
+void result_batch_in_chunks(const ConvexBoxPairs& p, std::size_t count, ConvexResult* out, const ConvexQueryOptions& opt,
+                            Mode mode) {
+  batch_in_chunks(
+      p, count, out,
+      [&](const ConvexBoxPairs& v, std::size_t n, ConvexResult* o) { box_result_batch(v, n, o, opt, mode); },
+      [&](std::size_t i) {
+        BoxBatchPair q;
+        load_pair_scalar(p, i, q);
+        return query(q.a, q.pa, q.b, q.pb, opt, mode);
+      },
+      [](const ConvexResult& r) { return r.status == ConvexStatus::invalid_input; });
+}
+}  // namespace
+}  // namespace detail
+
 void convex_intersect_batch(const ConvexBoxPairs& p, std::size_t count, ConvexResult* out,
                             const ConvexQueryOptions& opt) {
-  detail::box_result_batch(p, count, out, opt, detail::Mode::intersect);
+  detail::result_batch_in_chunks(p, count, out, opt, detail::Mode::intersect);
 }
 
 void convex_distance_batch(const ConvexBoxPairs& p, std::size_t count, ConvexResult* out,
                            const ConvexQueryOptions& opt) {
-  detail::box_result_batch(p, count, out, opt, detail::Mode::distance);
+  detail::result_batch_in_chunks(p, count, out, opt, detail::Mode::distance);
 }
 
 void convex_penetration_batch(const ConvexBoxPairs& p, std::size_t count, ConvexResult* out,
                               const ConvexQueryOptions& opt) {
-  detail::box_result_batch(p, count, out, opt, detail::Mode::penetration);
+  detail::result_batch_in_chunks(p, count, out, opt, detail::Mode::penetration);
 }
 
 }  // namespace gyro

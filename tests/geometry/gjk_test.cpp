@@ -705,6 +705,47 @@ TEST(GjkBatch, SideBySideEpaMatchesScalarOnHardPairs) {
   }
 }
 
+// The batches cut the pairs into fixed chunks over the threads: every thread count gives the
+// same bits (a count that leaves a partial chunk; invalid pairs in a chunk a worker runs),
+// and the first invalid pair's message reaches the calling thread.
+TEST(GjkBatch, SameBitsAtEveryThreadCount) {
+  testing::BoxPairs p = testing::n1_pairs(5000 + 77);
+  p.a.hx[4100] = -1.0f;  // invalid, in the fifth chunk
+  p.b.cy[4500] = std::nanf("");
+  const std::size_t n = p.a.cx.size();
+  const ConvexBoxPairs pairs = soa_view(p);
+  ConvexQueryOptions early;
+  early.separated_distance = false;
+  std::vector<ConvexResult> ref(n), out(n);
+  std::vector<ConvexStatus> ref_st(n), out_st(n);
+  for (int mode = 0; mode < 3; ++mode) {
+    const auto call = [&](std::vector<ConvexResult>& r) {
+      if (mode == 0) convex_distance_batch(pairs, n, r.data());
+      else convex_penetration_batch(pairs, n, r.data(), mode == 1 ? ConvexQueryOptions{} : early);
+    };
+    set_thread_count(1);
+    call(ref);
+    convex_intersect_batch(pairs, n, ref_st.data());
+    EXPECT_EQ(ref[4100].status, ConvexStatus::invalid_input);
+    EXPECT_EQ(ref_st[4500], ConvexStatus::invalid_input);
+    for (uint32_t threads : {2u, 3u, 4u}) {
+      set_thread_count(threads);
+      ConvexShape unused;
+      ASSERT_NE(make_box({-1.0f, 1.0f, 1.0f}, unused), Status::ok);  // another message first
+      ASSERT_EQ(std::string(last_error()).find("not finite"), std::string::npos);
+      std::fill(out.begin(), out.end(), ConvexResult{});
+      call(out);
+      EXPECT_NE(std::string(last_error()).find("not finite"), std::string::npos) << last_error();
+      ASSERT_NE(make_box({-1.0f, 1.0f, 1.0f}, unused), Status::ok);
+      convex_intersect_batch(pairs, n, out_st.data());
+      EXPECT_EQ(std::memcmp(out.data(), ref.data(), n * sizeof(ConvexResult)), 0) << "mode " << mode << " threads " << threads;
+      EXPECT_EQ(out_st, ref_st) << threads;
+      EXPECT_NE(std::string(last_error()).find("not finite"), std::string::npos) << last_error();
+    }
+  }
+  set_thread_count(0);
+}
+
 TEST(GjkBatch, EmptyBatchWritesNothing) {
   const testing::BoxPairs p = testing::n1_pairs(1);
   const ConvexBoxPairs pairs = soa_view(p);
