@@ -19,6 +19,15 @@
 //
 // Determinism: + - * / sqrt and comparisons in a fixed order; ties go to the lowest face
 // index.
+//
+// Side by side (epa_boxes, the box-pair batches): the loop is written as two halves, select
+// the closest face and expand towards the support along its normal, which epa() runs in
+// turn for one polytope and epa_boxes for up to 16 at once. There the supports, the repeat
+// test, the new faces' planes and the closest-face search run over SIMD lanes across the
+// polytopes (epa_lanes.cpp, the same operations as the scalar code), while the walk and
+// the linking stay per polytope: each polytope sees the operations epa() performs, so the
+// bits are the same. Measured on N1's overlapping pairs: 4.5 expansions and 21 faces per
+// pair, with add_face alone about a third of the scalar EPA's instructions.
 #include "core/float_order.hpp"
 #include "geometry/convex_support.hpp"
 #include "geometry/epa_lanes.hpp"
