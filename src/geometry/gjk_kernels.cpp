@@ -213,8 +213,8 @@ inline void round(std::size_t j, std::size_t active, const BoxGjkParams& prm, Bo
   for (int q = 0; q <= top; ++q) wv[q] = dot(W[q], W[q]);
   Sub<L> r = gjk_lanes::zero<L>();
   if (any(go && n1)) r = gjk_lanes::s1d<0, 1>(W, wv);
-  if (top >= 2 && any(go && n2)) gjk_lanes::take(n2, r, gjk_lanes::s2d<0, 1, 2>(W, wv));
-  if (top >= 3 && any(go && n3)) gjk_lanes::take(n3, r, gjk_lanes::s3d(W, wv));
+  if (top >= 2 && any(go && n2)) gjk_lanes::take(n2, r, gjk_lanes::s2d<0, 1, 2>(W, wv, go && n2));
+  if (top >= 3 && any(go && n3)) gjk_lanes::take(n3, r, gjk_lanes::s3d(W, wv, go && n3));
   const auto full = go && (r.n == L(4.0f));
   const auto progress = go && !full && (r.vv < vv);
   // Kept points to the front, in the subalgorithm's order.

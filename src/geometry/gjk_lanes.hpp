@@ -65,8 +65,10 @@ template <class M, class L> inline void fold(M facing, M& have, Sub<L>& best, co
   have = have || facing;
 }
 
-// Triangle W[I0] W[I1] W[I2].
-template <int I0, int I1, int I2, class L> inline Sub<L> s2d(const V3<L>* W, const L* wv) {
+// Triangle W[I0] W[I1] W[I2]. Only the lanes in `need` use the result: a candidate none of
+// them needs is skipped (the other lanes may hold no simplex of this size at all, and their
+// stale points would ask for candidates nobody uses).
+template <int I0, int I1, int I2, class L, class M> inline Sub<L> s2d(const V3<L>* W, const L* wv, M need) {
   const V3<L> n = cross(W[I1] - W[I0], W[I2] - W[I0]);
   const L nn = dot(n, n);
   const auto pos = nn > L(0.0f);
@@ -93,10 +95,10 @@ template <int I0, int I1, int I2, class L> inline Sub<L> s2d(const V3<L>* W, con
   r.n = L(3.0f), r.i0 = L(float(I0)), r.i1 = L(float(I1)), r.i2 = L(float(I2));
   r.l0 = c[0] / sum, r.l1 = c[1] / sum, r.l2 = c[2] / sum, r.l3 = L(0.0f);
   r.v = p, r.vv = dot(p, p);
-  if (all(inside)) return r;
+  if (all(inside || !need)) return r;
   Sub<L> best = r;
   auto have = inside;  // inside lanes keep r: mark them as decided
-  const auto out = !inside;
+  const auto out = need && !inside;
   if (any(out && f0)) fold(out && f0, have, best, s1d<I1, I2>(W, wv));
   if (any(out && f1)) fold(out && f1, have, best, s1d<I2, I0>(W, wv));
   if (any(out && f2)) fold(out && f2, have, best, s1d<I0, I1>(W, wv));
@@ -105,8 +107,8 @@ template <int I0, int I1, int I2, class L> inline Sub<L> s2d(const V3<L>* W, con
 
 template <class L> inline L triple(const V3<L>& a, const V3<L>& b, const V3<L>& c) { return dot(a, cross(b, c)); }
 
-// Tetrahedron W[0..3].
-template <class L> inline Sub<L> s3d(const V3<L>* W, const L* wv) {
+// Tetrahedron W[0..3], for the lanes in `need` (as s2d).
+template <class L, class M> inline Sub<L> s3d(const V3<L>* W, const L* wv, M need) {
   const L c0 = triple(W[1], W[2], W[3]), c1 = -triple(W[0], W[2], W[3]), c2 = triple(W[0], W[1], W[3]),
           c3 = -triple(W[0], W[1], W[2]);
   const L total = ((c0 + c1) + c2) + c3;
@@ -117,14 +119,14 @@ template <class L> inline Sub<L> s3d(const V3<L>* W, const L* wv) {
   r.n = L(4.0f), r.i0 = L(0.0f), r.i1 = L(1.0f), r.i2 = L(2.0f);
   r.l0 = c0 / total, r.l1 = c1 / total, r.l2 = c2 / total, r.l3 = c3 / total;
   r.v = V3<L>{L(0.0f), L(0.0f), L(0.0f)}, r.vv = L(0.0f);
-  if (all(inside)) return r;
+  if (all(inside || !need)) return r;
   Sub<L> best = r;
   auto have = inside;
-  const auto out = !inside;
-  if (any(out && f0)) fold(out && f0, have, best, s2d<1, 2, 3>(W, wv));
-  if (any(out && f1)) fold(out && f1, have, best, s2d<0, 2, 3>(W, wv));
-  if (any(out && f2)) fold(out && f2, have, best, s2d<0, 1, 3>(W, wv));
-  if (any(out && f3)) fold(out && f3, have, best, s2d<0, 1, 2>(W, wv));
+  const auto out = need && !inside;
+  if (any(out && f0)) fold(out && f0, have, best, s2d<1, 2, 3>(W, wv, out && f0));
+  if (any(out && f1)) fold(out && f1, have, best, s2d<0, 2, 3>(W, wv, out && f1));
+  if (any(out && f2)) fold(out && f2, have, best, s2d<0, 1, 3>(W, wv, out && f2));
+  if (any(out && f3)) fold(out && f3, have, best, s2d<0, 1, 2>(W, wv, out && f3));
   return best;
 }
 
