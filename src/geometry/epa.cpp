@@ -32,6 +32,7 @@
 #include "core/float_order.hpp"
 #include "geometry/convex_support.hpp"
 #include "geometry/epa_lanes.hpp"
+#include "geometry/epa_plane_lanes.hpp"
 
 #include <memory>
 
@@ -108,27 +109,15 @@ struct Polytope {
     lane_key[g * int(EpaClosest::kSlots)] = !sliver && d < kInf ? d : kInf;
   }
 
-  // The face's plane from the columns, in scalars: the same operations, in the same order,
-  // as cross(), dot() and normalized() on vec3 (so the same bits), without the shuffles
-  // the compiler emits for three-float structs. epa_lanes.cpp's plane() is the same again.
+  // The face's plane from the columns: face_plane()'s float instantiation, the expressions
+  // epa_lanes.cpp evaluates over lanes for epa_boxes.
   int add_face(int a, int b, int c) {
     const int g = add_topology(a, b, c);
     Face& f = face[g];
-    const float ax = wx[a], ay = wy[a], az = wz[a];
-    const float e1x = wx[b] - ax, e1y = wy[b] - ay, e1z = wz[b] - az;
-    const float e2x = wx[c] - ax, e2y = wy[c] - ay, e2z = wz[c] - az;
-    const float nx = e1y * e2z - e1z * e2y, ny = e1z * e2x - e1x * e2z, nz = e1x * e2y - e1y * e2x;
-    const float nn = nx * nx + ny * ny + nz * nz;
-    const float ee = (e1x * e1x + e1y * e1y + e1z * e1z) * (e2x * e2x + e2y * e2y + e2z * e2z);
-    f.sliver = !(nn > 1e-12f * ee) || !(nn > 0.0f);
-    if (f.sliver) {
-      f.n = vec3{}, f.d = 0.0f, key[g] = kNone;
-      return g;
-    }
-    const vec3 n = normalized(vec3{nx, ny, nz});
-    f.n = n;
-    f.d = n.x * ax + n.y * ay + n.z * az;
-    key[g] = f.d < kInf ? face_key(f.d) : kNone;
+    const GYRO_ARCH_NS::FacePlane<float> pl =
+        GYRO_ARCH_NS::face_plane(wx[a], wy[a], wz[a], wx[b], wy[b], wz[b], wx[c], wy[c], wz[c]);
+    f.n = {pl.nx, pl.ny, pl.nz}, f.d = pl.d, f.sliver = pl.sliver != 0.0f;
+    key[g] = !f.sliver && f.d < kInf ? face_key(f.d) : kNone;
     return g;
   }
 

@@ -4,32 +4,18 @@
 #include "geometry/epa_lanes.hpp"
 
 #include "core/lanes.hpp"
+#include "geometry/epa_plane_lanes.hpp"
 
 namespace gyro::GYRO_ARCH_NS {
 namespace {
 
-// Polytope::add_face's plane: e1 = b - a, e2 = c - a, n = cross(e1, e2); a sliver when
-// |n|^2 <= 1e-12 |e1|^2 |e2|^2 or |n|^2 is not positive; else normalized(n) (rescaled by
-// 2^100 or 2^-100 outside [2^-100, 2^100]) and d = dot(n, a).
+// face_plane() (epa_plane_lanes.hpp) for job i onwards.
 template <class L> inline void plane(EpaPlaneJobs& j, std::size_t i) {
-  const L ax = load<L>(j.a[0] + i), ay = load<L>(j.a[1] + i), az = load<L>(j.a[2] + i);
-  const L e1x = load<L>(j.b[0] + i) - ax, e1y = load<L>(j.b[1] + i) - ay, e1z = load<L>(j.b[2] + i) - az;
-  const L e2x = load<L>(j.c[0] + i) - ax, e2y = load<L>(j.c[1] + i) - ay, e2z = load<L>(j.c[2] + i) - az;
-  const L nx = e1y * e2z - e1z * e2y, ny = e1z * e2x - e1x * e2z, nz = e1x * e2y - e1y * e2x;
-  const L nn = nx * nx + ny * ny + nz * nz;
-  const L ee = (e1x * e1x + e1y * e1y + e1z * e1z) * (e2x * e2x + e2y * e2y + e2z * e2z);
-  const auto sliver = !(nn > L(1e-12f) * ee) || !(nn > L(0.0f));
-  const auto small = nn < L(0x1p-100f), big = nn > L(0x1p+100f);
-  const L k = select(small, L(0x1p+100f), L(0x1p-100f));
-  const L sx = select(small || big, nx * k, nx), sy = select(small || big, ny * k, ny),
-          sz = select(small || big, nz * k, nz);
-  const L sq = select(small || big, sx * sx + sy * sy + sz * sz, nn);
-  const L len = sqrt(sq);
-  const L zero(0.0f);
-  const L ux = select(sliver, zero, sx / len), uy = select(sliver, zero, sy / len), uz = select(sliver, zero, sz / len);
-  store(j.n[0] + i, ux), store(j.n[1] + i, uy), store(j.n[2] + i, uz);
-  store(j.d + i, select(sliver, zero, ux * ax + uy * ay + uz * az));
-  store(j.sliver + i, select(sliver, L(1.0f), zero));
+  const FacePlane<L> f = face_plane(load<L>(j.a[0] + i), load<L>(j.a[1] + i), load<L>(j.a[2] + i), load<L>(j.b[0] + i),
+                                    load<L>(j.b[1] + i), load<L>(j.b[2] + i), load<L>(j.c[0] + i), load<L>(j.c[1] + i),
+                                    load<L>(j.c[2] + i));
+  store(j.n[0] + i, f.nx), store(j.n[1] + i, f.ny), store(j.n[2] + i, f.nz);
+  store(j.d + i, f.d), store(j.sliver + i, f.sliver);
 }
 
 // signed_by(h, d): h, negated unless d >= 0.
