@@ -39,7 +39,11 @@ inline constexpr std::size_t kBvhStackSize = 7 * kBvhMaxDepth + 8;
 struct alignas(64) BvhNode8 {
   float bounds[6][8];  ///< [2 * axis + (0: min, 1: max)][child]
   uint32_t child[8];   ///< node index, kLeafBit | leaf block index, or kEmptyChild
-  uint32_t unused[8] = {};  ///< to the cache line, zeroed so the bytes are defined
+  /// order[o]: the slots front to back for a ray in octant o (bit k set: its direction is
+  /// negative along axis k), nibble j the j-th: by the children's centres along the
+  /// octant's diagonal, ties in slot order, empty slots last. A closest-hit walk pushes the
+  /// entered children in this order without sorting their entry distances (bvh_order.hpp).
+  uint32_t order[8] = {};
 };
 
 struct alignas(64) BvhLeaf4 {

@@ -89,7 +89,33 @@ template <class Node> Node empty_node() {
     for (int a = 0; a < 3; ++a) n.bounds[2 * a][k] = kInf, n.bounds[2 * a + 1][k] = -kInf;
     n.child[k] = kEmptyChild;
   }
+  for (uint32_t& o : n.order) o = 0x76543210u;
   return n;
+}
+
+// BvhNode8::order: for each octant, the slots sorted by their centres along its diagonal
+// (lo + hi in binary64, exact for floats, so the order is a function of the bounds alone).
+inline void set_orders(BvhNode8& n) {
+  for (int o = 0; o < 8; ++o) {
+    double key[8];
+    int slot[8];
+    for (int k = 0; k < 8; ++k) {
+      key[k] = kInf;
+      if (n.child[k] != kEmptyChild) {
+        key[k] = 0.0;
+        for (int a = 0; a < 3; ++a) {
+          const double c = double(n.bounds[2 * a][k]) + double(n.bounds[2 * a + 1][k]);
+          key[k] += o >> a & 1 ? -c : c;
+        }
+      }
+      int j = k;
+      while (j > 0 && key[slot[j - 1]] > key[k]) slot[j] = slot[j - 1], --j;
+      slot[j] = k;
+    }
+    uint32_t packed = 0;
+    for (int j = 0; j < 8; ++j) packed |= uint32_t(slot[j]) << (4 * j);
+    n.order[o] = packed;
+  }
 }
 
 double blocks(uint32_t n) { return double((n + kLeafSize - 1) / kLeafSize); }
@@ -359,6 +385,7 @@ class Builder {
       const uint32_t code = c.count > 0 ? emit_leaf(out, c, leaf) : emit(out, kids[k], depth + 1, max_depth, leaf);
       set_child(out.nodes[index], k, c.box, code);
     }
+    set_orders(out.nodes[index]);
     return index;
   }
 };

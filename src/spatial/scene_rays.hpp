@@ -47,8 +47,9 @@ struct SceneRaycastArgs {
   const float* pad;       ///< per ray: how far every box is widened (the scene's ray pad)
   const uint8_t* walk;    ///< per ray: 0 = leave it (invalid, or already answered)
   bool any_hit;
-  /// Eight rays take turns (hiding the memory latency of a tree the cache cannot hold);
-  /// else one ray at a time, which is faster in a tree it does hold.
+  /// The tree is beyond the cache: each visit prefetches the next one's lines, and any-hit
+  /// rays take turns (hiding the memory latency) instead of walking one at a time.
+  /// Closest-hit rays from many origins always take turns (scene_kernels.cpp).
   bool in_turns;
   /// In: the best hit before the tree (the planes'); out: the best over planes and tree.
   float* best_t;          ///< +inf: none

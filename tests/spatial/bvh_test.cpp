@@ -120,20 +120,62 @@ uint64_t fnv(const void* p, std::size_t n, uint64_t h) {
   return h;
 }
 
-uint64_t bytes_hash(const detail::Bvh8& b) {
+// The tree: every node's bounds and children, then the leaves. The nodes' child orders came
+// later (derived from the bounds, checked below): they are hashed as the zero bytes their
+// field held before, so the pins below still are those of the tree before them.
+template <class B> uint64_t tree_hash(const B& b) {
+  const uint32_t zeros[8] = {};
+  static_assert(sizeof(zeros) == sizeof(b.nodes[0].order));
+  uint64_t h = 1469598103934665603ull;
+  for (const auto& n : b.nodes) h = fnv(zeros, sizeof(zeros), fnv(n.child, sizeof(n.child), fnv(n.bounds, sizeof(n.bounds), h)));
+  return fnv(b.leaves.data(), b.leaves.size() * sizeof(b.leaves[0]), h);
+}
+
+template <class B> uint64_t bytes_hash(const B& b) {
   const uint64_t h = fnv(b.nodes.data(), b.nodes.size() * sizeof(b.nodes[0]), 1469598103934665603ull);
   return fnv(b.leaves.data(), b.leaves.size() * sizeof(b.leaves[0]), h);
 }
 
-uint64_t bytes_hash(const detail::BoxBvh8& b) {
-  const uint64_t h = fnv(b.nodes.data(), b.nodes.size() * sizeof(b.nodes[0]), 1469598103934665603ull);
-  return fnv(b.leaves.data(), b.leaves.size() * sizeof(b.leaves[0]), h);
+// BvhNode8::order for every octant: a permutation of the slots, the used ones first, front
+// to back along the octant's diagonal by their centres (ties in slot order). Returns the
+// number of nodes that break it.
+template <class B> std::size_t bad_orders(const B& b) {
+  std::size_t bad = 0;
+  for (const auto& n : b.nodes) {
+    bool ok = true;
+    for (int o = 0; o < 8; ++o) {
+      unsigned seen = 0;
+      double last_key = -INFINITY;
+      int last_slot = -1;
+      bool empties = false;
+      for (int j = 0; j < 8; ++j) {
+        const int s = int(n.order[o] >> (4 * j) & 15u);
+        ok = ok && s < 8 && !(seen >> s & 1u);
+        seen |= 1u << (s & 7);
+        if (n.child[s & 7] == detail::kEmptyChild) {
+          empties = true;
+          continue;
+        }
+        ok = ok && !empties;
+        double key = 0.0;
+        for (int a = 0; a < 3; ++a) {
+          const double c = double(n.bounds[2 * a][s & 7]) + double(n.bounds[2 * a + 1][s & 7]);
+          key += o >> a & 1 ? -c : c;
+        }
+        ok = ok && (key > last_key || (key == last_key && s > last_slot));
+        last_key = key, last_slot = s;
+      }
+    }
+    bad += !ok;
+  }
+  return bad;
 }
 
 // The build runs its top nodes' binning in parallel chunks and its subtrees as parallel
 // tasks: the bytes must not depend on the thread count. 70k triangles take both paths (the
 // chunks from 32k primitives, the tasks below 4k); the hashes are those of the serial
-// builder this replaced, so the tree itself is pinned too.
+// builder this replaced, so the tree itself is pinned too; the whole bytes (with the child
+// orders) must match across thread counts, and the orders must be what BvhNode8 says.
 TEST(Bvh, SameBytesAtEveryThreadCount) {
   const MeshData mesh = random_mesh(70000, 5, false), clustered = random_mesh(40000, 6, true);
   std::vector<detail::BvhBox> boxes(50000);
@@ -144,11 +186,20 @@ TEST(Bvh, SameBytesAtEveryThreadCount) {
       b.hi[a] = b.lo[a] + float(rng.u());
     }
   const uint32_t saved = thread_count();
+  uint64_t whole[3] = {};
   for (uint32_t threads : {1u, 2u, 3u, 8u}) {
     set_thread_count(threads);
-    EXPECT_EQ(bytes_hash(detail::build_bvh8(mesh)), 9627874186029580605ull) << threads << " threads";
-    EXPECT_EQ(bytes_hash(detail::build_bvh8(clustered)), 4852311048424736952ull) << threads << " threads";
-    EXPECT_EQ(bytes_hash(detail::build_box_bvh8(boxes.data(), boxes.size())), 949896103437628419ull) << threads << " threads";
+    const detail::Bvh8 a = detail::build_bvh8(mesh), b = detail::build_bvh8(clustered);
+    const detail::BoxBvh8 c = detail::build_box_bvh8(boxes.data(), boxes.size());
+    EXPECT_EQ(tree_hash(a), 9627874186029580605ull) << threads << " threads";
+    EXPECT_EQ(tree_hash(b), 4852311048424736952ull) << threads << " threads";
+    EXPECT_EQ(tree_hash(c), 949896103437628419ull) << threads << " threads";
+    const uint64_t h[3] = {bytes_hash(a), bytes_hash(b), bytes_hash(c)};
+    for (int k = 0; k < 3; ++k) {
+      if (threads == 1u) whole[k] = h[k];
+      EXPECT_EQ(h[k], whole[k]) << "tree " << k << ", " << threads << " threads";
+    }
+    EXPECT_EQ(bad_orders(a) + bad_orders(b) + bad_orders(c), 0u) << threads << " threads";
   }
   set_thread_count(saved);
 }
