@@ -36,6 +36,7 @@
 #include "spatial/scene_rays.hpp"
 
 #include <bit>
+#include <utility>
 
 namespace gyro::GYRO_ARCH_NS {
 namespace {
@@ -317,6 +318,21 @@ template <bool AnyHit, bool Turns, bool Fetch> void run(const SceneRaycastArgs& 
   }
   for (int k = 0; k < kInFlight; ++k)
     if (refill(walks[k])) live[n++] = k;
+  // While every walk is live (all but the range's last rays), a round gives each its turn,
+  // unrolled: the loop over the live walks mispredicted its exit once a round (R1: 1.9
+  // mispredicted branches per ray; unrolled, 5.7 -> 6.2 Mrays/s, AVX-512, one thread).
+  if (n == kInFlight) {
+    bool all = true, dead[kInFlight] = {};
+    const auto turn = [&](int k) {
+      if (step<AnyHit, Fetch>(a, walks[k])) return;
+      finish(walks[k]);
+      if (!refill(walks[k])) all = false, dead[k] = true;
+    };
+    while (all) [&]<int... K>(std::integer_sequence<int, K...>) { (turn(K), ...); }(std::make_integer_sequence<int, kInFlight>{});
+    n = 0;
+    for (int k = 0; k < kInFlight; ++k)
+      if (!dead[k]) live[n++] = k;
+  }
   while (n > 0) {
     for (int j = 0; j < n;) {
       Walk& w = walks[live[j]];
