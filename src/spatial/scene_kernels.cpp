@@ -9,8 +9,9 @@
 // of dependent instructions sat on the walk's critical path (R1 3.4 against the sorted
 // walk's 3.8 Mrays/s), and turns with the sorted push paid its mispredicted branches plus
 // the turns' bookkeeping (3.0); together, R1 went from 3.8 to 5.2 Mrays/s (AVX-512, one
-// thread). In a tree too large for the cache, each visit also prefetches the next one's
-// lines (as the mesh kernel, bvh_kernels.cpp, does). Any hit keeps the sorted order (its
+// thread), and to about 6 with a visit popping its own entry and the turns unrolled. Only
+// in a large tree (SceneRaycastArgs::prefetch) does a visit pop the next entry and prefetch
+// its lines, as the mesh kernel (bvh_kernels.cpp) does. Any hit keeps the sorted order (its
 // answer depends on the order) and walks alone in a tree the cache holds.
 //
 // Exactness (scene.cpp's header): boxes are widened by the ray's pad, a box whose exit
@@ -100,7 +101,9 @@ inline float limit_of(const Walk& w, bool any_hit) {
   return l < w.tmax ? l : w.tmax;
 }
 
-template <bool Fetch> inline void start(const SceneRaycastArgs& a, Walk& w, std::size_t i) {
+// OnStack: the root goes onto the stack (the closest-hit step pops every visit's entry);
+// else it is w.next (the sorted walks).
+template <bool OnStack, bool Fetch> inline void start(const SceneRaycastArgs& a, Walk& w, std::size_t i) {
   const float o[3] = {a.ox[i], a.oy[i], a.oz[i]}, d[3] = {a.dx[i], a.dy[i], a.dz[i]};
   const float pad = a.pad[i];
   w.oct = 0;
@@ -125,7 +128,8 @@ template <bool Fetch> inline void start(const SceneRaycastArgs& a, Walk& w, std:
   w.best_t = a.best_t[i], w.best_key = a.best_key[i], w.best_item = kNone;
   w.ray = i;
   w.next = {0, tmin};
-  w.sp = 0;
+  w.stack_code[0] = 0, w.stack_near[0] = tmin;
+  w.sp = OnStack ? 1 : 0;
   prefetch<Fetch>(a, 0);
 }
 
@@ -241,7 +245,7 @@ inline bool enter_node(const SceneRaycastArgs& a, Walk& w, const BvhNode8& node,
 
 // Visits w.next and picks the one after it; false when the walk is over.
 template <bool AnyHit, bool Fetch> inline bool step(const SceneRaycastArgs& a, Walk& w) {
-  if constexpr (!AnyHit) {
+  if constexpr (!AnyHit && Fetch) {  // pops the next entry after the visit, to prefetch it
     const uint32_t code = w.next.code;
     if (code & kLeafBit) {
       visit_leaf<false>(a, w, a.leaves[code & ~kLeafBit]);
@@ -252,6 +256,24 @@ template <bool AnyHit, bool Fetch> inline bool step(const SceneRaycastArgs& a, W
       w.sp = order::push(node, w.oct, tn, mask, w.stack_code, w.stack_near, w.sp);
     }
     return next_entry<Fetch>(a, w);
+  }
+  if constexpr (!AnyHit) {  // the visit pops its entry: the top one entered within the limit
+    int sp = w.sp;
+    do {
+      if (sp == 0) return false;
+      --sp;
+    } while (w.stack_near[sp] > w.limit);
+    const uint32_t code = w.stack_code[sp];
+    if (code & kLeafBit) {
+      visit_leaf<false>(a, w, a.leaves[code & ~kLeafBit]);
+    } else {
+      const BvhNode8& node = a.nodes[code];
+      Oct tn;
+      const unsigned mask = entered(w, node, tn);
+      sp = order::push(node, w.oct, tn, mask, w.stack_code, w.stack_near, sp);
+    }
+    w.sp = sp;
+    return true;
   }
   const Entry e = w.next;
   if (e.code & kLeafBit) {
@@ -297,7 +319,7 @@ template <bool AnyHit, bool Turns, bool Fetch> void run(const SceneRaycastArgs& 
   const auto refill = [&](Walk& w) {
     for (; next < end; ++next) {
       if (!a.walk[next]) continue;
-      start<Fetch>(a, w, next);
+      start<!AnyHit && !Fetch, Fetch>(a, w, next);
       w.limit = limit_of(w, AnyHit);
       ++next;
       return true;
@@ -432,7 +454,7 @@ void run_packets(const SceneRaycastArgs& a, std::size_t begin, std::size_t end) 
     int n = 0;
     for (; n < kPacket && next < end; ++next) {
       if (!a.walk[next]) continue;
-      start<false>(a, W[n], next);
+      start<false, false>(a, W[n], next);
       W[n].limit = limit_of(W[n], false);
       ++n;
     }
@@ -456,7 +478,7 @@ GYRO_FLATTEN void scene_raycast(const SceneRaycastArgs& a, std::size_t begin, st
   const bool origin = one_origin(a, begin, end);
   if (!a.any_hit) {
     if (origin) run_packets(a, begin, end);
-    else if (a.in_turns) run<false, true, true>(a, begin, end);
+    else if (a.prefetch) run<false, true, true>(a, begin, end);
     else run<false, true, false>(a, begin, end);
   } else {
     if (a.in_turns && !origin) run<true, true, true>(a, begin, end);

@@ -369,7 +369,8 @@ TEST(Scene, RaycastsEqualBruteForceInBothModes) {
 // leaves) with eight rays taking turns, a smaller one a ray at a time (every other test
 // here): both must give the octree's scalar walk, bit for bit, at every level and thread count.
 // The batch closest hits of a scene's BVH equal the octree's scalar walk, ray for ray, at
-// every level and on 1 and 2 threads.
+// every level and on 1 and 2 threads, with and without prefetching (RayPrefetch: the tree
+// here is below the automatic mode's 8 MiB).
 void expect_batch_equals_octree_walk(TestScene& s, const Rays& rays) {
   const std::size_t n = rays.set.size();
   SceneSettings settings;
@@ -382,16 +383,20 @@ void expect_batch_equals_octree_walk(TestScene& s, const Rays& rays) {
     hits += expect[i].hit.hit;
   }
   EXPECT_GT(hits, n / 4);
-  ASSERT_EQ(s.scene.configure(SceneSettings{}), Status::ok);
-  const SceneStats st = s.scene.stats();
-  EXPECT_GT(st.nodes * 256 + st.leaves * 128, std::size_t(1) << 20);  // BvhNode8, SceneLeaf4
-  for (const SimdLevel level : testing::available_levels())
-    for (const uint32_t threads : {1u, 2u}) {
-      ScopedExecution exec(level, threads);
-      Columns c(n);
-      ASSERT_EQ(raycast_closest(s.scene, rays.view(), n, c.out()), Status::ok);
-      for (std::size_t i = 0; i < n; ++i) expect_batch_matches(c, expect, rays, i);
-    }
+  for (const RayPrefetch prefetch : {RayPrefetch::automatic, RayPrefetch::always, RayPrefetch::never}) {
+    SceneSettings bvh;
+    bvh.ray_prefetch = prefetch;
+    ASSERT_EQ(s.scene.configure(bvh), Status::ok);
+    const SceneStats st = s.scene.stats();
+    EXPECT_GT(st.nodes * 256 + st.leaves * 128, std::size_t(1) << 20);  // BvhNode8, SceneLeaf4
+    for (const SimdLevel level : testing::available_levels())
+      for (const uint32_t threads : {1u, 2u}) {
+        ScopedExecution exec(level, threads);
+        Columns c(n);
+        ASSERT_EQ(raycast_closest(s.scene, rays.view(), n, c.out()), Status::ok);
+        for (std::size_t i = 0; i < n; ++i) expect_batch_matches(c, expect, rays, i);
+      }
+  }
 }
 
 TEST(Scene, LargeSceneRaysInTurnsEqualTheScalarWalk) {
@@ -918,6 +923,10 @@ TEST(Scene, BadInputGetsAStatusAndChangesNothing) {
   bad.accel = static_cast<SceneAccel>(5);
   EXPECT_EQ(s.scene.configure(bad), Status::invalid_argument);
   EXPECT_EQ(s.scene.settings().accel, SceneAccel::bvh);
+  bad = {};
+  bad.ray_prefetch = static_cast<RayPrefetch>(3);
+  EXPECT_EQ(s.scene.configure(bad), Status::invalid_argument);
+  EXPECT_EQ(s.scene.settings().ray_prefetch, RayPrefetch::automatic);
 
   // Batch calls: bad views and counts write nothing.
   Rays rays = make_rays(before, 8, 82);
