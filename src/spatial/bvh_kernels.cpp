@@ -28,6 +28,7 @@
 #include "spatial/packet_walk.hpp"
 
 #include <bit>
+#include <utility>
 
 namespace gyro::GYRO_ARCH_NS {
 namespace {
@@ -374,6 +375,23 @@ template <bool AnyHit, bool Turns> void run(const BvhRaycastArgs& a, std::size_t
   }
   for (int k = 0; k < kInFlight; ++k)
     if (refill(walks[k])) live[n++] = k;
+  // While every walk is live (all but the range's last rays), a round gives each its turn,
+  // eight at a time unrolled: the loop over the live walks mispredicted its exit once a round.
+  if (n == kInFlight) {
+    static_assert(kInFlight % 8 == 0);
+    bool all = true, dead[kInFlight] = {};
+    const auto turn = [&](int k) {
+      if (step<AnyHit, Turns>(a, walks[k])) return;
+      finish(walks[k]);
+      if (!refill(walks[k])) all = false, dead[k] = true;
+    };
+    while (all)
+      for (int g = 0; g < kInFlight; g += 8)
+        [&]<int... K>(std::integer_sequence<int, K...>) { (turn(g + K), ...); }(std::make_integer_sequence<int, 8>{});
+    n = 0;
+    for (int k = 0; k < kInFlight; ++k)
+      if (!dead[k]) live[n++] = k;
+  }
   while (n > 0) {
     for (int j = 0; j < n;) {
       Walk& w = walks[live[j]];
