@@ -137,8 +137,8 @@ enum class SceneAccel : uint32_t {
   octree = 1,
 };
 
-/// Whether closest-hit ray batches through a scene's BVH prefetch each next visit's cache
-/// lines. It changes speed only, never a result. Prefetching pays once the tree outgrows the
+/// Whether ray batches through a scene's BVH (closest and any hit) prefetch each next
+/// visit's cache lines. It changes speed only, never a result. Prefetching pays once the tree outgrows the
 /// caches and costs instructions before: on the machine the defaults were measured on (1 MiB
 /// L2 per core, 32 MiB L3), without it up to about 8 MiB of tree (3 * 10^5 spheres), with it
 /// beyond. Set it where your machine's caches differ.

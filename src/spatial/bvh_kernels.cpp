@@ -1,11 +1,11 @@
 // bvh_raycast at this translation unit's SIMD level: each ray walks the 8-wide BVH on its
 // own, testing a node's eight child boxes in one 8-wide lane (Oct: one AVX register, or two
-// Quads) and a leaf's four triangles in one 4-wide lane (Quad); eight rays from different
-// origins take turns, one visit each, so that each one's next node arrives from memory while
-// the others work. For the closest hit, a node's entered children are pushed in the node's
-// stored order for the ray's octant, without a branch (bvh_order.hpp; R2 3.1 -> 3.9 Mrays/s,
-// AVX2, one thread). Rays from one origin (closest hit) walk in packets of eight instead
-// (packet_walk.hpp: a child box against eight rays per lane).
+// Quads) and a leaf's four triangles in one 4-wide lane (Quad); sixteen rays take turns, one
+// visit each, so that each one's next node arrives from memory while the others work. A
+// node's entered children are pushed in the node's stored order for the ray's octant,
+// without a branch (bvh_order.hpp; R2 3.1 -> 3.9 Mrays/s, AVX2, one thread); an any-hit
+// answer is the first hit in that order. Rays from one origin (closest hit) walk in packets
+// of eight instead (packet_walk.hpp: a child box against eight rays per lane).
 //
 // Exactness: the answer is the brute-force one, the smallest (t, triangle index) over every
 // triangle the watertight test of ray_triangle_lanes.hpp hits in [tmin, tmax]. The order in
@@ -156,10 +156,11 @@ inline void start(const Bvh8& bvh, Walk& w, std::size_t ray, const float o[3], c
 }
 
 // Visits w.next and picks the one after it; false when the walk is over. Rays taking turns
-// for the closest hit push a node's children in its stored order (bvh_order.hpp): without
-// branches, and the other rays' visits hide the push's latency. A ray walking alone sorts
-// them by entry distance instead: there the branches are predicted ahead, and the push's
-// chain of dependent instructions would sit on the walk's critical path.
+// (closest and any hit) push a node's children in its stored order (bvh_order.hpp): without
+// branches, and the other rays' visits hide the push's latency. A ray walking alone (the
+// closest-hit packets' fallback) sorts them by entry distance instead: there the branches
+// are predicted ahead, and the push's chain of dependent instructions would sit on the
+// walk's critical path.
 template <bool AnyHit, bool Turns> inline bool step(const BvhRaycastArgs& a, Walk& w) {
   const Bvh8& bvh = *a.bvh;
   const Entry e = w.next;
@@ -184,7 +185,7 @@ template <bool AnyHit, bool Turns> inline bool step(const BvhRaycastArgs& a, Wal
     const Oct tn = max(slab(nr[0], 0), max(slab(nr[1], 1), max(slab(nr[2], 2), w.tmin8)));
     const Oct tf = min(slab(fr[0], 0), min(slab(fr[1], 1), min(slab(fr[2], 2), Oct(w.limit))));
     const unsigned mask = lane_bits(tn <= tf + abs(tf) * Oct(kSlabSlack));
-    if constexpr (!AnyHit && Turns) {
+    if constexpr (Turns) {
       w.sp = order::push(node, w.oct, tn, mask, w.stack_code, w.stack_near, w.sp);
     } else if (mask != 0) {
       float nears[8];
@@ -446,8 +447,9 @@ void run_packets(const BvhRaycastArgs& a, std::size_t begin, std::size_t end) {
 }  // namespace
 
 GYRO_FLATTEN void bvh_raycast(const BvhRaycastArgs& a, std::size_t begin, std::size_t end) {
-  if (one_origin(a, begin, end) && !a.any_hit) run_packets(a, begin, end);
-  else if (one_origin(a, begin, end)) run<true, false>(a, begin, end);
+  // Any hit takes turns even from one origin: its answer (the first hit in the stored
+  // order) must not depend on the rays beside it.
+  if (!a.any_hit && one_origin(a, begin, end)) run_packets(a, begin, end);
   else a.any_hit ? run<true, true>(a, begin, end) : run<false, true>(a, begin, end);
 }
 

@@ -49,7 +49,6 @@ constexpr float kRayPad = 0x1p-17f;
 constexpr float kSlabSlack = 0x1p-18f;
 constexpr float kBestSlack = 0x1p-16f;
 constexpr float kTinyPad = 1e-30f;
-constexpr std::size_t kTurnsBytes = std::size_t(1) << 20;  // about a core's L2 cache
 constexpr std::size_t kFetchBytes = std::size_t(8) << 20;  // RayPrefetch::automatic (gyro/scene.hpp)
 constexpr uint32_t kNoIndex = 0xFFFFFFFFu;
 // Entries on a traversal stack: a node pushes at most 7 siblings per level.
@@ -235,7 +234,6 @@ struct Scene::Impl {
   detail::BoxBvh8 bvh;
   std::vector<detail::SceneLeaf4> ray_leaves;  // bvh.leaves as the ray kernel reads them
   std::vector<detail::SceneBoxes4> ray_boxes;  // their box models, for leaves with any
-  bool rays_in_turns = false;                  // the tree outgrows a core's L2 cache (any hit: rays take turns)
   bool rays_large = false;                     // beyond kFetchBytes (RayPrefetch::automatic)
   Octree octree;
   SceneAccel built = SceneAccel::bvh;
@@ -288,7 +286,7 @@ struct Scene::Impl {
     bvh = detail::BoxBvh8{};
     ray_leaves.clear();
     ray_boxes.clear();
-    rays_in_turns = rays_large = false;
+    rays_large = false;
     octree.clear();
     if (built == SceneAccel::bvh) {
       std::vector<detail::BvhBox> boxes(tree_slots.size());
@@ -298,15 +296,12 @@ struct Scene::Impl {
       }
       bvh = detail::build_box_bvh8(boxes.data(), boxes.size());
       build_ray_leaves();
-      // Measured on R1's spheres (1 thread), for the sorted walks (any hit): at 10^4 models
-      // (0.4 MB of tree) one ray at a time is up to 20% faster, at 10^5 (4 MB) and 10^6 eight
-      // rays in turns are 30% faster. Closest-hit rays always take turns; prefetching the
-      // next visit costs more than it saves up to about 3 * 10^5 spheres at R1's density
-      // (rays spread over the scene; 8 MB of tree: 1.5-1.6 Mrays/s either way), at 10^5
-      // 3.1-3.4 Mrays/s without against 2.4 with, at 10^6 0.8-0.9 against 1.1.
+      // Rays take turns at every size; prefetching the next visit costs more than it saves
+      // up to about 3 * 10^5 spheres at R1's density (R1's closest-hit rays spread over the
+      // scene, one thread; 8 MB of tree: 1.5-1.6 Mrays/s either way), at 10^5 3.1-3.4
+      // Mrays/s without against 2.4 with, at 10^6 0.8-0.9 against 1.1.
       const std::size_t bytes = bvh.nodes.size() * sizeof(detail::BvhNode8) +
                                 ray_leaves.size() * sizeof(detail::SceneLeaf4) + ray_boxes.size() * sizeof(detail::SceneBoxes4);
-      rays_in_turns = bytes > kTurnsBytes;
       rays_large = bytes > kFetchBytes;
     } else {
       std::vector<AABB> boxes(tree_slots.size());
@@ -816,8 +811,8 @@ void trace_block(const Scene::Impl& m, const RaysView& rays, std::size_t begin, 
     const SceneRaycastArgs args{m.bvh.nodes.data(), m.ray_leaves.data(), m.ray_boxes.data(), rays.ox + begin, rays.oy + begin,
                                 rays.oz + begin,    rays.dx + begin,      rays.dy + begin, rays.dz + begin,
                                 shift(rays.tmin),   shift(rays.tmax),     pad,             walk,
-                                any,                m.rays_in_turns,      prefetch,        best_t,
-                                best_key,           best_item,            exact_t,         &b};
+                                any,                prefetch,             best_t,          best_key,
+                                best_item,          exact_t,              &b};
     GYRO_DISPATCH(scene_raycast)(args, 0, n);
   }
   for (std::size_t k = 0; k < n; ++k) {

@@ -11,8 +11,9 @@
 // the turns' bookkeeping (3.0); together, R1 went from 3.8 to 5.2 Mrays/s (AVX-512, one
 // thread), and to about 6 with a visit popping its own entry and the turns unrolled. Only
 // in a large tree (SceneRaycastArgs::prefetch) does a visit pop the next entry and prefetch
-// its lines, as the mesh kernel (bvh_kernels.cpp) does. Any hit keeps the sorted order (its
-// answer depends on the order) and walks alone in a tree the cache holds.
+// its lines, as the mesh kernel (bvh_kernels.cpp) does. Any hit walks the same way (R1's
+// rays: 3.7 Mrays/s sorted and alone, 6.3 ordered in turns); its answer is the first hit in
+// the stored order, whatever the rays beside it.
 //
 // Exactness (scene.cpp's header): boxes are widened by the ray's pad, a box whose exit
 // precedes its entry by up to 2^-18 of the exit still counts as entered, a NaN slab product
@@ -191,8 +192,8 @@ template <bool AnyHit> inline bool visit_leaf(const SceneRaycastArgs& a, Walk& w
   return false;
 }
 
-// Tests a node's child boxes, pushes the entered ones but the nearest onto the stack at sp and
-// makes that one `next`; true when it lies within the limit (the walk goes on with it).
+// Tests a node's child boxes: each one's entry in tn, bit k set where slot k is entered
+// within the limit.
 inline unsigned entered(const Walk& w, const BvhNode8& node, Oct& tn) {
   tn = w.tmin8;
   Oct tf = Oct(w.limit);
@@ -206,8 +207,9 @@ inline unsigned entered(const Walk& w, const BvhNode8& node, Oct& tn) {
   return lane_bits((tn <= tf + abs(tf) * Oct(kSlabSlack)) && (tn < Oct(kInf)));
 }
 
-template <bool Fetch>
-inline bool enter_node(const SceneRaycastArgs& a, Walk& w, const BvhNode8& node, Entry& next, int& sp) {
+// The sorted walk's visit (walk_alone): pushes the entered children but the nearest onto the
+// stack at sp and makes that one `next`; true when it lies within the limit.
+inline bool enter_node(Walk& w, const BvhNode8& node, Entry& next, int& sp) {
   Oct tn;
   const unsigned mask = entered(w, node, tn);
   if (mask == 0) return false;
@@ -238,17 +240,19 @@ inline bool enter_node(const SceneRaycastArgs& a, Walk& w, const BvhNode8& node,
     for (int j = n - 1; j > 0; --j) push(w, sp, hit[j]);
     next = hit[0];
   }
-  if (!(next.near <= w.limit)) return false;
-  prefetch<Fetch>(a, next.code);
-  return true;
+  return next.near <= w.limit;
 }
 
-// Visits w.next and picks the one after it; false when the walk is over.
+// One visit of a ray taking turns; false when its walk is over (its stack is empty, or an
+// any-hit walk found its hit). Children are pushed in the node's stored order
+// (bvh_order.hpp), for the closest hit and any hit alike. With Fetch, a visit ends by
+// popping the next entry and prefetching its lines (w.next); without, a visit pops its own.
+// Both visit the same entries in the same order, so an any-hit walk reports the same hit.
 template <bool AnyHit, bool Fetch> inline bool step(const SceneRaycastArgs& a, Walk& w) {
-  if constexpr (!AnyHit && Fetch) {  // pops the next entry after the visit, to prefetch it
+  if constexpr (Fetch) {
     const uint32_t code = w.next.code;
     if (code & kLeafBit) {
-      visit_leaf<false>(a, w, a.leaves[code & ~kLeafBit]);
+      if (visit_leaf<AnyHit>(a, w, a.leaves[code & ~kLeafBit])) return false;
     } else {
       const BvhNode8& node = a.nodes[code];
       Oct tn;
@@ -256,8 +260,7 @@ template <bool AnyHit, bool Fetch> inline bool step(const SceneRaycastArgs& a, W
       w.sp = order::push(node, w.oct, tn, mask, w.stack_code, w.stack_near, w.sp);
     }
     return next_entry<Fetch>(a, w);
-  }
-  if constexpr (!AnyHit) {  // the visit pops its entry: the top one entered within the limit
+  } else {
     int sp = w.sp;
     do {
       if (sp == 0) return false;
@@ -265,7 +268,7 @@ template <bool AnyHit, bool Fetch> inline bool step(const SceneRaycastArgs& a, W
     } while (w.stack_near[sp] > w.limit);
     const uint32_t code = w.stack_code[sp];
     if (code & kLeafBit) {
-      visit_leaf<false>(a, w, a.leaves[code & ~kLeafBit]);
+      if (visit_leaf<AnyHit>(a, w, a.leaves[code & ~kLeafBit])) return false;
     } else {
       const BvhNode8& node = a.nodes[code];
       Oct tn;
@@ -275,25 +278,21 @@ template <bool AnyHit, bool Fetch> inline bool step(const SceneRaycastArgs& a, W
     w.sp = sp;
     return true;
   }
-  const Entry e = w.next;
-  if (e.code & kLeafBit) {
-    if (visit_leaf<AnyHit>(a, w, a.leaves[e.code & ~kLeafBit])) return false;
-  } else if (enter_node<Fetch>(a, w, a.nodes[e.code], w.next, w.sp)) {
-    return true;
-  }
-  return next_entry<Fetch>(a, w);
 }
 
-// One ray at a time: step()'s walk with the cursor (the next entry, the stack depth) in
-// locals, which stay in registers; as Walk's fields they went through memory, and the
-// store-to-load forwarding sat on every visit's chain of dependent instructions.
-template <bool AnyHit> inline void walk_alone(const SceneRaycastArgs& a, Walk& w) {
+// One ray at a time, children sorted by entry distance (closest hit only: the packets'
+// fallback, rays from one origin whose direction signs differ). Alone, the sorted walk's
+// branches are predicted ahead, where the ordered push's chain of dependent instructions
+// would sit on the walk's critical path. The cursor (the next entry, the stack depth) stays
+// in locals, in registers; as Walk's fields it went through memory, and the store-to-load
+// forwarding sat on every visit's chain of dependent instructions.
+inline void walk_alone(const SceneRaycastArgs& a, Walk& w) {
   Entry e = w.next;
   int sp = 0;
   for (;;) {
     if (e.code & kLeafBit) {
-      if (visit_leaf<AnyHit>(a, w, a.leaves[e.code & ~kLeafBit])) return;
-    } else if (enter_node<false>(a, w, a.nodes[e.code], e, sp)) {
+      visit_leaf<false>(a, w, a.leaves[e.code & ~kLeafBit]);
+    } else if (enter_node(w, a.nodes[e.code], e, sp)) {
       continue;
     }
     do {  // next_entry()'s pops
@@ -304,22 +303,22 @@ template <bool AnyHit> inline void walk_alone(const SceneRaycastArgs& a, Walk& w
   }
 }
 
-// Rays from one origin (a camera, a lidar) walk nearly the same nodes one after another: they
-// walk as packets (closest hit) or, for any hit, one at a time.
+// Rays from one origin (a camera, a lidar) walk nearly the same nodes one after another: for
+// the closest hit they walk as packets.
 inline bool one_origin(const SceneRaycastArgs& a, std::size_t begin, std::size_t end) {
   for (std::size_t i = begin + 1; i < end; ++i)
     if (a.ox[i] != a.ox[begin] || a.oy[i] != a.oy[begin] || a.oz[i] != a.oz[begin]) return false;
   return true;
 }
 
-template <bool AnyHit, bool Turns, bool Fetch> void run(const SceneRaycastArgs& a, std::size_t begin, std::size_t end) {
+template <bool AnyHit, bool Fetch> void run(const SceneRaycastArgs& a, std::size_t begin, std::size_t end) {
   Walk walks[kInFlight];
   int live[kInFlight], n = 0;
   std::size_t next = begin;
   const auto refill = [&](Walk& w) {
     for (; next < end; ++next) {
       if (!a.walk[next]) continue;
-      start<!AnyHit && !Fetch, Fetch>(a, w, next);
+      start<!Fetch, Fetch>(a, w, next);
       w.limit = limit_of(w, AnyHit);
       ++next;
       return true;
@@ -331,13 +330,6 @@ template <bool AnyHit, bool Turns, bool Fetch> void run(const SceneRaycastArgs& 
     a.best_key[w.ray] = w.best_key;
     if (w.best_item != kNone) a.best_item[w.ray] = w.best_item;
   };
-  if constexpr (!Turns) {  // one ray at a time: no bookkeeping of turns
-    while (refill(walks[0])) {
-      walk_alone<AnyHit>(a, walks[0]);
-      finish(walks[0]);
-    }
-    return;
-  }
   for (int k = 0; k < kInFlight; ++k)
     if (refill(walks[k])) live[n++] = k;
   // While every walk is live (all but the range's last rays), a round gives each its turn,
@@ -462,7 +454,7 @@ void run_packets(const SceneRaycastArgs& a, std::size_t begin, std::size_t end) 
     if (start_packet(a, W, n, P)) {
       walk_packet(a, W, (1u << n) - 1u, P);
     } else {
-      for (int r = 0; r < n; ++r) walk_alone<false>(a, W[r]);
+      for (int r = 0; r < n; ++r) walk_alone(a, W[r]);
     }
     for (int r = 0; r < n; ++r) {
       a.best_t[W[r].ray] = W[r].best_t;
@@ -476,14 +468,9 @@ void run_packets(const SceneRaycastArgs& a, std::size_t begin, std::size_t end) 
 
 GYRO_FLATTEN void scene_raycast(const SceneRaycastArgs& a, std::size_t begin, std::size_t end) {
   const bool origin = one_origin(a, begin, end);
-  if (!a.any_hit) {
-    if (origin) run_packets(a, begin, end);
-    else if (a.prefetch) run<false, true, true>(a, begin, end);
-    else run<false, true, false>(a, begin, end);
-  } else {
-    if (a.in_turns && !origin) run<true, true, true>(a, begin, end);
-    else run<true, false, false>(a, begin, end);
-  }
+  if (!a.any_hit && origin) run_packets(a, begin, end);
+  else if (a.any_hit) a.prefetch ? run<true, true>(a, begin, end) : run<true, false>(a, begin, end);
+  else a.prefetch ? run<false, true>(a, begin, end) : run<false, false>(a, begin, end);
 }
 
 }  // namespace gyro::GYRO_ARCH_NS

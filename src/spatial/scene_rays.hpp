@@ -47,12 +47,8 @@ struct SceneRaycastArgs {
   const float* pad;       ///< per ray: how far every box is widened (the scene's ray pad)
   const uint8_t* walk;    ///< per ray: 0 = leave it (invalid, or already answered)
   bool any_hit;
-  /// Any hit: the tree is beyond the L2 cache, rays take turns and each visit prefetches
-  /// the next one's lines (hiding the memory latency); else one ray at a time, faster in a
-  /// tree the cache holds.
-  bool in_turns;
-  /// Closest hit (rays from many origins always take turns, scene_kernels.cpp): the tree is
-  /// large enough that prefetching each next visit pays for its instructions.
+  /// The tree is large enough that prefetching each next visit pays for its instructions
+  /// (rays take turns, scene_kernels.cpp; it changes no answer).
   bool prefetch;
   /// In: the best hit before the tree (the planes'); out: the best over planes and tree.
   float* best_t;          ///< +inf: none
