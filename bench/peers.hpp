@@ -49,7 +49,9 @@ struct PeerBuild {
   std::size_t peak_bytes = 0;  // Embree: the most memory held during the build
 };
 
-enum class EmbreeMethod { intersect1, intersect16 };
+/// rtcIntersect1/16: the closest hit. rtcOccluded1/16: any hit (occlusion), reported as t = 0
+/// and primitive 0 on a hit (Embree gives neither), +inf and -1 on a miss.
+enum class EmbreeMethod { intersect1, intersect16, occluded1, occluded16 };
 
 bool embree_available();
 /// "3.13.5" and whether rtcIntersect16 runs natively (AVX-512), for the comment lines.
@@ -71,7 +73,7 @@ class EmbreeScene {
   static std::unique_ptr<EmbreeScene> spheres(const testing::SphereSet& spheres, uint32_t build_threads,
                                               PeerBuild& build);
   ~EmbreeScene();
-  /// Closest hit of rays [0, n) on [0, tmax] with rtcIntersect1 per ray or rtcIntersect16
+  /// Closest hit (or any hit: EmbreeMethod) of rays [0, n) on [0, tmax], one ray per call or
   /// packets of 16 consecutive rays, on `threads` threads taking chunks of rays in turn.
   void trace(const testing::RaySet& rays, std::size_t n, float tmax, EmbreeMethod method, uint32_t threads,
              RayResults& out) const;

@@ -115,6 +115,48 @@ void trace_range16(RTCScene scene, const testing::RaySet& r, std::size_t begin, 
   }
 }
 
+void occluded_range1(RTCScene scene, const testing::RaySet& r, std::size_t begin, std::size_t end, float tmax,
+                     RayResults& out) {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  for (std::size_t i = begin; i < end; ++i) {
+    RTCRay ray;
+    ray.org_x = r.ox[i], ray.org_y = r.oy[i], ray.org_z = r.oz[i], ray.tnear = 0.0f;
+    ray.dir_x = r.dx[i], ray.dir_y = r.dy[i], ray.dir_z = r.dz[i], ray.time = 0.0f;
+    ray.tfar = tmax, ray.mask = ~0u, ray.id = 0, ray.flags = 0;
+    rtcOccluded1(scene, &context, &ray);
+    const bool hit = ray.tfar < 0.0f;  // Embree sets tfar to -inf on a hit
+    out.t[i] = hit ? 0.0f : std::numeric_limits<float>::infinity();
+    out.primitive[i] = hit ? 0 : -1;
+  }
+}
+
+void occluded_range16(RTCScene scene, const testing::RaySet& r, std::size_t begin, std::size_t end, float tmax,
+                      RayResults& out) {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  for (std::size_t p = begin; p < end; p += 16) {
+    alignas(64) int valid[16];
+    RTCRay16 ray;
+    for (int k = 0; k < 16; ++k) {
+      const std::size_t i = p + std::size_t(k);
+      const bool live = i < end;
+      const std::size_t s = live ? i : begin;  // a finite ray in the dead lanes
+      valid[k] = live ? -1 : 0;
+      ray.org_x[k] = r.ox[s], ray.org_y[k] = r.oy[s], ray.org_z[k] = r.oz[s], ray.tnear[k] = 0.0f;
+      ray.dir_x[k] = r.dx[s], ray.dir_y[k] = r.dy[s], ray.dir_z[k] = r.dz[s], ray.time[k] = 0.0f;
+      ray.tfar[k] = tmax, ray.mask[k] = ~0u, ray.id[k] = unsigned(k), ray.flags[k] = 0;
+    }
+    rtcOccluded16(valid, scene, &context, &ray);
+    for (int k = 0; k < 16 && p + std::size_t(k) < end; ++k) {
+      const std::size_t i = p + std::size_t(k);
+      const bool hit = ray.tfar[k] < 0.0f;
+      out.t[i] = hit ? 0.0f : std::numeric_limits<float>::infinity();
+      out.primitive[i] = hit ? 0 : -1;
+    }
+  }
+}
+
 }  // namespace
 
 bool embree_available() { return true; }
@@ -179,10 +221,12 @@ void EmbreeScene::trace(const testing::RaySet& rays, std::size_t n, float tmax, 
   auto worker = [&] {
     for (std::size_t b; (b = next.fetch_add(kChunk)) < n;) {
       const std::size_t e = std::min(n, b + kChunk);
-      if (method == EmbreeMethod::intersect1)
-        trace_range1(impl_->scene, rays, b, e, tmax, out);
-      else
-        trace_range16(impl_->scene, rays, b, e, tmax, out);
+      switch (method) {
+        case EmbreeMethod::intersect1: trace_range1(impl_->scene, rays, b, e, tmax, out); break;
+        case EmbreeMethod::intersect16: trace_range16(impl_->scene, rays, b, e, tmax, out); break;
+        case EmbreeMethod::occluded1: occluded_range1(impl_->scene, rays, b, e, tmax, out); break;
+        case EmbreeMethod::occluded16: occluded_range16(impl_->scene, rays, b, e, tmax, out); break;
+      }
     }
   };
   std::vector<std::thread> pool;

@@ -10,7 +10,9 @@
 //    every triangle of every cell the ray can cross, so it needs no BVH to trust.
 // A ray disagrees when its hit/miss verdict differs from the reference, or its t differs by
 // more than 1e-3 max(1, t_ref) (a leak through the surface hits something farther away);
-// max_abs_dt is the largest |t - t_ref| over the agreeing hits.
+// max_abs_dt is the largest |t - t_ref| over the agreeing hits. R1 and R2 also run any hit
+// (occlusion, line of sight: gyro's raycast_any against Embree's rtcOccluded1/16), scored on
+// the verdict alone, with the hit count as the checksum.
 //
 // gyro runs per thread count at its best SIMD level, or at each level --simd names (R1:
 // every ray through a scene of 10,000 sphere models under its BVH, the line peers are
@@ -62,6 +64,7 @@ struct RayCase {
   float tmax = testing::kRayTmax;
   std::vector<double> ref;  // closest t, +inf on a miss
   bool ordered = false;     // rays are spatially coherent: subsample with a stride
+  bool any_hit = false;     // also any-hit lines
 };
 
 /// Every stride-th ray (and its reference where there is one), count rays at most.
@@ -70,7 +73,7 @@ RayCase subsample(const RayCase& c, std::size_t count) {
   if (n <= count) return c;
   const std::size_t stride = c.ordered ? (n + count - 1) / count : 1;
   RayCase s;
-  s.workload = c.workload, s.tmax = c.tmax, s.ordered = c.ordered;
+  s.workload = c.workload, s.tmax = c.tmax, s.ordered = c.ordered, s.any_hit = c.any_hit;
   for (std::size_t i = 0, k = 0; i < n && k < count; i += stride, ++k) {
     s.rays.push(c.rays.ox[i], c.rays.oy[i], c.rays.oz[i], c.rays.dx[i], c.rays.dy[i], c.rays.dz[i]);
     if (i < c.ref.size()) s.ref.push_back(c.ref[i]);
@@ -190,21 +193,23 @@ std::vector<double> terrain_reference(const MeshData& mesh, const RaySet& rays, 
 struct Score {
   std::size_t rays = 0, hits = 0, compared = 0, disagree = 0, ref_hits = 0;
   double checksum = 0, ref_checksum = 0, max_abs_dt = 0;
-  std::string examples;  // the first three disagreeing rays, for a comment line
+  bool verdicts = false;  // any hit: the verdicts alone, the hit count as the checksum
+  std::string examples;   // the first three disagreeing rays, for a comment line
 };
 
-Score score(const float* t, std::size_t n, float tmax, const std::vector<double>& ref) {
+Score score(const float* t, std::size_t n, float tmax, const std::vector<double>& ref, bool verdicts = false) {
   Score s;
   s.rays = n;
+  s.verdicts = verdicts;
   s.compared = std::min(n, ref.size());
   for (std::size_t i = 0; i < n; ++i) {
     const bool hit = t[i] >= 0.0f && t[i] <= tmax;
-    if (hit) ++s.hits, s.checksum += double(t[i]);
+    if (hit) ++s.hits, s.checksum += verdicts ? 1.0 : double(t[i]);
     if (i >= s.compared) continue;
     const bool ref_hit = ref[i] <= double(tmax);
-    if (ref_hit) ++s.ref_hits, s.ref_checksum += double(float(ref[i]));
+    if (ref_hit) ++s.ref_hits, s.ref_checksum += verdicts ? 1.0 : double(float(ref[i]));
     bool agree = hit == ref_hit;
-    if (agree && hit) {
+    if (agree && hit && !verdicts) {
       const double dt = std::abs(double(t[i]) - ref[i]);
       agree = dt <= 1e-3 * std::max(1.0, ref[i]);
       if (agree) s.max_abs_dt = std::max(s.max_abs_dt, dt);
@@ -230,7 +235,10 @@ struct Line {
   int reps;
 };
 
-const char* error_metric(const RayCase& c) {
+const char* error_metric(const RayCase& c, bool verdicts) {
+  if (verdicts)
+    return std::string(c.workload) == "R1" ? "rays whose hit/miss differs from the binary64 brute force"
+                                           : "rays whose hit/miss differs from the binary64 grid walk";
   return std::string(c.workload) == "R1"
              ? "rays disagreeing with the binary64 brute force (hit/miss, or t beyond 1e-3 max(1,t))"
              : "rays disagreeing with the binary64 grid walk (hit/miss, or t beyond 1e-3 max(1,t))";
@@ -254,7 +262,7 @@ double emit(const RayCase& c, const Line& l, const Score& s, const char* per, do
       .integer("hits", int64_t(s.hits))
       .num("checksum", s.checksum, 12)
       .num("error", double(s.disagree))
-      .str("error_metric", error_metric(c))
+      .str("error_metric", error_metric(c, s.verdicts))
       .integer("error_rays", int64_t(s.compared))
       .num("max_abs_dt", s.max_abs_dt, 3)
       .integer("ref_hits", int64_t(s.ref_hits))
@@ -278,6 +286,9 @@ RaysView view_with_tmax(const RaySet& r, const std::vector<float>& tmax) {
 // ---------------------------------------------------------------- gyro
 
 using GyroRates = std::map<uint32_t, double>;  // Mrays/s at the best level run, by threads
+struct GyroRuns {
+  GyroRates closest, any;
+};
 
 // These workloads compare libraries, so by default gyro runs at its best level only
 // (R1S and G1 compare the levels); --simd asks for others.
@@ -285,8 +296,8 @@ std::vector<SimdLevel> ray_levels(const Options& o) {
   return o.levels.empty() ? std::vector<SimdLevel>{detected_simd_level()} : levels_to_run(o);
 }
 
-GyroRates run_gyro_mesh(const Options& o, const MeshData& mesh, const RayCase& c) {
-  GyroRates rates;
+GyroRuns run_gyro_mesh(const Options& o, const MeshData& mesh, const RayCase& c) {
+  GyroRuns rates;
   TriangleMesh tm;
   // The build runs on the thread count of each line, as Embree's does (the same bytes at
   // every count; the last build serves the rays).
@@ -321,10 +332,18 @@ GyroRates run_gyro_mesh(const Options& o, const MeshData& mesh, const RayCase& c
         continue;
       }
       const Score s = score(hits.t.data(), n, c.tmax, c.ref);
-      rates[threads] = emit(c,
-                            {"gyro", "closest_hit_bvh", simd_level_name(level), threads, build_ms[threads], stats.bytes,
-                             mesh.triangle_count(), ms, o.reps},
-                            s, "bytes_per_triangle");
+      rates.closest[threads] = emit(c,
+                                    {"gyro", "closest_hit_bvh", simd_level_name(level), threads, build_ms[threads],
+                                     stats.bytes, mesh.triangle_count(), ms, o.reps},
+                                    s, "bytes_per_triangle");
+      if (!c.any_hit) continue;
+      const double any_ms =
+          median_ms(o.reps, [&] { qs = raycast_any(tm, view_with_tmax(c.rays, tmax), n, hits.out(false)); });
+      if (qs != Status::ok) continue;
+      rates.any[threads] = emit(c,
+                                {"gyro", "any_hit_bvh", simd_level_name(level), threads, build_ms[threads], stats.bytes,
+                                 mesh.triangle_count(), any_ms, o.reps},
+                                score(hits.t.data(), n, c.tmax, c.ref, true), "bytes_per_triangle");
     }
   }
   set_simd_level(SimdLevel::automatic);
@@ -362,8 +381,8 @@ GyroRates run_gyro_spheres_subsample(const Options& o, const testing::SphereSet&
 }
 
 // R1 through gyro's scene: one sphere model per R1 sphere under the scene's BVH, every ray.
-GyroRates run_gyro_spheres_scene(const Options& o, const testing::SphereSet& spheres, const RayCase& c) {
-  GyroRates rates;
+GyroRuns run_gyro_spheres_scene(const Options& o, const testing::SphereSet& spheres, const RayCase& c) {
+  GyroRuns rates;
   const auto start = std::chrono::steady_clock::now();
   Scene scene;
   for (std::size_t i = 0; i < spheres.size(); ++i) {
@@ -391,9 +410,16 @@ GyroRates run_gyro_spheres_scene(const Options& o, const testing::SphereSet& sph
     for (uint32_t threads : threads_to_run(o)) {
       set_thread_count(threads);
       const double ms = median_ms(o.reps, [&] { raycast_closest(scene, view_with_tmax(c.rays, tmax), n, out); });
-      rates[threads] = emit(c, {"gyro", "closest_hit_scene_bvh", simd_level_name(level), threads, build_ms, st.bytes,
-                                spheres.size(), ms, o.reps},
-                            score(t.data(), n, c.tmax, c.ref), "bytes_per_sphere");
+      rates.closest[threads] = emit(c,
+                                    {"gyro", "closest_hit_scene_bvh", simd_level_name(level), threads, build_ms,
+                                     st.bytes, spheres.size(), ms, o.reps},
+                                    score(t.data(), n, c.tmax, c.ref), "bytes_per_sphere");
+      if (!c.any_hit) continue;
+      const double any_ms = median_ms(o.reps, [&] { raycast_any(scene, view_with_tmax(c.rays, tmax), n, out); });
+      rates.any[threads] = emit(c,
+                                {"gyro", "any_hit_scene_bvh", simd_level_name(level), threads, build_ms, st.bytes,
+                                 spheres.size(), any_ms, o.reps},
+                                score(t.data(), n, c.tmax, c.ref, true), "bytes_per_sphere");
     }
   }
   set_simd_level(SimdLevel::automatic);
@@ -406,7 +432,7 @@ GyroRates run_gyro_spheres_scene(const Options& o, const testing::SphereSet& sph
 enum class Geometry { triangles, spheres };
 
 void run_embree(const Options& o, Geometry g, const MeshData* mesh, const testing::SphereSet* spheres, const RayCase& c,
-                const GyroRates& gyro) {
+                const GyroRuns& gyro) {
   if (!embree_available()) {
     std::printf("# Embree not built in (libembree-dev missing at configure time)\n");
     return;
@@ -427,21 +453,29 @@ void run_embree(const Options& o, Geometry g, const MeshData* mesh, const testin
         std::printf("# Embree scene build failed\n");
         return;
       }
-      for (EmbreeMethod m : {EmbreeMethod::intersect1, EmbreeMethod::intersect16}) {
-        std::string name = m == EmbreeMethod::intersect1 ? "rtcIntersect1" : "rtcIntersect16";
+      for (EmbreeMethod m : {EmbreeMethod::intersect1, EmbreeMethod::intersect16, EmbreeMethod::occluded1,
+                             EmbreeMethod::occluded16}) {
+        const bool occluded = m == EmbreeMethod::occluded1 || m == EmbreeMethod::occluded16;
+        if (occluded && !c.any_hit) continue;
+        std::string name = m == EmbreeMethod::intersect1    ? "rtcIntersect1"
+                           : m == EmbreeMethod::intersect16 ? "rtcIntersect16"
+                           : m == EmbreeMethod::occluded1   ? "rtcOccluded1"
+                                                            : "rtcOccluded16";
         if (robust) name += "+robust";
         if (g == Geometry::spheres) name += " sphere_point";
         const double ms = median_ms(o.reps, [&] { scene->trace(c.rays, n, c.tmax, m, threads, r); });
-        const auto it = gyro.find(threads);
+        const GyroRates& vs = occluded ? gyro.any : gyro.closest;
+        const auto it = vs.find(threads);
         emit(c, {"embree", name, "auto", threads, b.ms, b.bytes, prims, ms, o.reps},
-             score(r.t.data(), n, c.tmax, c.ref), per, it == gyro.end() ? 0.0 : it->second);
+             score(r.t.data(), n, c.tmax, c.ref, occluded), per, it == vs.end() ? 0.0 : it->second);
       }
     }
   }
 }
 
 void run_bullet(const Options& o, Geometry g, const MeshData* mesh, const testing::SphereSet* spheres, const RayCase& c,
-                const GyroRates& gyro) {
+                const GyroRuns& runs) {
+  const GyroRates& gyro = runs.closest;
   if (!bullet_available()) {
     std::printf("# Bullet not built in (libbullet-dev missing at configure time)\n");
     return;
@@ -489,7 +523,7 @@ void run_terrain(const Options& o, RayCase c, const char* expected) {
   c.ref = terrain_reference(mesh, c.rays, c.tmax);
   print_reference(c, ms_since(start), expected);
   std::printf("# ratio_vs = this line's throughput / gyro's (best SIMD level, same threads)\n");
-  const GyroRates gyro = run_gyro_mesh(o, mesh, c);
+  const GyroRuns gyro = run_gyro_mesh(o, mesh, c);
   if (!o.peers) return;
   run_embree(o, Geometry::triangles, &mesh, nullptr, c, gyro);
   run_bullet(o, Geometry::triangles, &mesh, nullptr, c, gyro);
@@ -501,13 +535,14 @@ void run_r1(const Options& o) {
   const testing::SphereSet spheres = testing::r1_spheres();
   RayCase c;
   c.workload = "R1";
+  c.any_hit = true;
   c.rays = testing::r1_rays();
   if (c.rays.fnv() != testing::kR1RaysFnv) std::printf("# WARNING: R1 rays hash mismatch\n");
   const auto start = std::chrono::steady_clock::now();
   for (const testing::RefHit& h : testing::ref_raycast_spheres(c.rays, kR1ReferenceRays, spheres)) c.ref.push_back(h.t);
   print_reference(c, ms_since(start), "368,880 hits and sum t 9,564,267.01 over all 1,000,000 rays");
   std::printf("# ratio_vs = this line's throughput / gyro's (best SIMD level, same threads)\n");
-  const GyroRates gyro = run_gyro_spheres_scene(o, spheres, c);
+  const GyroRuns gyro = run_gyro_spheres_scene(o, spheres, c);
   run_gyro_spheres_subsample(o, spheres, c);
   if (!o.peers) return;
   run_embree(o, Geometry::spheres, nullptr, &spheres, c, gyro);
@@ -517,6 +552,7 @@ void run_r1(const Options& o) {
 void run_r2(const Options& o) {
   RayCase c;
   c.workload = "R2";
+  c.any_hit = true;
   c.rays = testing::r2_rays();
   if (c.rays.fnv() != testing::kR2RaysFnv) std::printf("# WARNING: R2 rays hash mismatch\n");
   run_terrain(o, std::move(c), "1,000,000 hits and sum t 39,910,570.77");
