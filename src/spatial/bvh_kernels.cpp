@@ -249,7 +249,7 @@ inline bool valid_ray(const float o[3], const float d[3], float tmin, float tmax
 constexpr int kInFlight = 16;
 
 // Rays from one origin (a camera, a lidar) walk nearly the same nodes one after another, which
-// the cache then already holds: for them taking turns would only cost mispredicted branches.
+// the cache then already holds: for the closest hit they walk as packets.
 inline bool one_origin(const BvhRaycastArgs& a, std::size_t begin, std::size_t end) {
   for (std::size_t i = begin + 1; i < end; ++i)
     if (a.ox[i] != a.ox[begin] || a.oy[i] != a.oy[begin] || a.oz[i] != a.oz[begin]) return false;
@@ -340,7 +340,8 @@ inline void walk_packet(const BvhRaycastArgs& a, const std::size_t* idx, Packet&
   packet::walk(bvh.nodes.data(), P.stack, P.limit, rays, enter, visit);
 }
 
-template <bool AnyHit, bool Turns> void run(const BvhRaycastArgs& a, std::size_t begin, std::size_t end) {
+// Rays [begin, end) taking turns, kInFlight at a time.
+template <bool AnyHit> void run(const BvhRaycastArgs& a, std::size_t begin, std::size_t end) {
   Walk walks[kInFlight];
   int live[kInFlight], n = 0;
   std::size_t next = begin;
@@ -353,7 +354,7 @@ template <bool AnyHit, bool Turns> void run(const BvhRaycastArgs& a, std::size_t
       const float tmin = a.tmin ? a.tmin[i] : 0.0f;
       const float tmax = a.tmax ? a.tmax[i] : kInf;
       if (valid_ray(o, d, tmin, tmax)) {
-        start<Turns>(*a.bvh, w, i, o, d, tmin, tmax);
+        start<true>(*a.bvh, w, i, o, d, tmin, tmax);
         ++next;
         return true;
       }
@@ -366,14 +367,6 @@ template <bool AnyHit, bool Turns> void run(const BvhRaycastArgs& a, std::size_t
     a.t_out[w.ray] = w.best_t;
     a.index_out[w.ray] = w.best_id;
   };
-  if constexpr (!Turns) {  // one ray at a time: no bookkeeping of turns
-    while (refill(walks[0])) {
-      while (step<AnyHit, Turns>(a, walks[0])) {
-      }
-      finish(walks[0]);
-    }
-    return;
-  }
   for (int k = 0; k < kInFlight; ++k)
     if (refill(walks[k])) live[n++] = k;
   // While every walk is live (all but the range's last rays), a round gives each its turn,
@@ -382,7 +375,7 @@ template <bool AnyHit, bool Turns> void run(const BvhRaycastArgs& a, std::size_t
     static_assert(kInFlight % 8 == 0);
     bool all = true, dead[kInFlight] = {};
     const auto turn = [&](int k) {
-      if (step<AnyHit, Turns>(a, walks[k])) return;
+      if (step<AnyHit, true>(a, walks[k])) return;
       finish(walks[k]);
       if (!refill(walks[k])) all = false, dead[k] = true;
     };
@@ -396,7 +389,7 @@ template <bool AnyHit, bool Turns> void run(const BvhRaycastArgs& a, std::size_t
   while (n > 0) {
     for (int j = 0; j < n;) {
       Walk& w = walks[live[j]];
-      if (step<AnyHit, Turns>(a, w)) {
+      if (step<AnyHit, true>(a, w)) {
         ++j;
         continue;
       }
@@ -450,7 +443,7 @@ GYRO_FLATTEN void bvh_raycast(const BvhRaycastArgs& a, std::size_t begin, std::s
   // Any hit takes turns even from one origin: its answer (the first hit in the stored
   // order) must not depend on the rays beside it.
   if (!a.any_hit && one_origin(a, begin, end)) run_packets(a, begin, end);
-  else a.any_hit ? run<true, true>(a, begin, end) : run<false, true>(a, begin, end);
+  else a.any_hit ? run<true>(a, begin, end) : run<false>(a, begin, end);
 }
 
 }  // namespace gyro::GYRO_ARCH_NS

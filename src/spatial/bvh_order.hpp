@@ -1,4 +1,4 @@
-// The closest-hit walks' push of a node's entered children (scene_kernels.cpp,
+// The push of a node's entered children for walks whose rays take turns (scene_kernels.cpp,
 // bvh_kernels.cpp), compiled at each including translation unit's level.
 //
 // Children are pushed in the node's stored front-to-back order for the ray's octant
@@ -12,14 +12,21 @@
 //
 // A closest-hit answer does not depend on the visiting order (the kernels' exactness notes:
 // ties go to the lower index, and a subtree is skipped only when entered beyond the best t
-// by a margin), so this changes speed, never bits. Any-hit walks keep the sorted order,
-// which decides which hit they report.
+// by a margin), so this changes speed, never bits. An any-hit answer is the first hit in
+// this order: a function of the tree and the ray alone, so the same at every level and
+// thread count.
+//
+// The order is fixed per node and octant, so it is only approximately front to back for a
+// ray that starts among the children. Rays walking alone still sort by entry distance, and
+// so do the packets (packet_walk.hpp): pushed in this order, LIDAR's packets from a point
+// inside the terrain ran 22% slower (CAMERA 4%).
 #pragma once
 
 #include "core/lanes.hpp"
 #include "spatial/bvh.hpp"
 
 #include <array>
+#include <bit>
 #include <cstdint>
 
 #if defined(GYRO_ARCH_AVX2) || defined(GYRO_ARCH_AVX512)

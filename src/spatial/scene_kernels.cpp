@@ -30,8 +30,10 @@
 // instructions and was slower in 5 of 6 alternating R1 runs (median -6%). Rays from one
 // origin (closest hit) walk in packets of eight through the walk both kernels share
 // (packet_walk.hpp; sharing it cost the LIDAR packets 2% more instructions).
-// Any hit: a leaf's items are tried in lane order and the walk stops at the first hit, the
-// order the scalar walk tries them in.
+// Any hit: the walk stops at the first hit, a leaf's items tried in lane order and the
+// nodes in their stored order, so the model it names is the same at every level, thread
+// count and prefetch mode (the scalar walk of scene.cpp, which sorts by entry distance, may
+// name another; gyro/scene.hpp promises no more than that).
 #include "geometry/ray_lanes.hpp"
 #include "spatial/bvh_order.hpp"
 #include "spatial/packet_walk.hpp"
@@ -72,7 +74,7 @@ struct Walk {
   std::size_t ray;
   Entry next;
   int sp;
-  uint32_t stack_code[kStackSize];  // two columns, so a closest-hit push stores each in one register (bvh_order.hpp)
+  uint32_t stack_code[kStackSize];  // two columns, so an ordered push stores each from one register (bvh_order.hpp)
   float stack_near[kStackSize];
 };
 
@@ -102,8 +104,8 @@ inline float limit_of(const Walk& w, bool any_hit) {
   return l < w.tmax ? l : w.tmax;
 }
 
-// OnStack: the root goes onto the stack (the closest-hit step pops every visit's entry);
-// else it is w.next (the sorted walks).
+// OnStack: the root goes onto the stack (step() without Fetch pops every visit's entry);
+// else it is w.next (step() with Fetch, and walk_alone()).
 template <bool OnStack, bool Fetch> inline void start(const SceneRaycastArgs& a, Walk& w, std::size_t i) {
   const float o[3] = {a.ox[i], a.oy[i], a.oz[i]}, d[3] = {a.dx[i], a.dy[i], a.dz[i]};
   const float pad = a.pad[i];
