@@ -123,6 +123,18 @@ GYRO_API gyro_status gyro_scene_create(gyro_scene_accel accel, gyro_scene** out)
 
 GYRO_API void gyro_scene_destroy(gyro_scene* scene) { delete scene; }
 
+GYRO_API gyro_status gyro_scene_set_ray_prefetch(gyro_scene* scene, gyro_ray_prefetch mode) {
+  return guarded([&]() -> Status {
+    GYRO_TRY(require(scene, "scene"));
+    if (mode > GYRO_RAY_PREFETCH_NEVER) return fail(Status::invalid_argument, "mode = %u is unknown", mode);
+    gyro::SceneSettings settings = scene->scene.settings();
+    settings.ray_prefetch = mode == GYRO_RAY_PREFETCH_ALWAYS  ? gyro::RayPrefetch::always
+                            : mode == GYRO_RAY_PREFETCH_NEVER ? gyro::RayPrefetch::never
+                                                              : gyro::RayPrefetch::automatic;
+    return scene->scene.configure(settings);
+  });
+}
+
 GYRO_API gyro_status gyro_scene_add_model(gyro_scene* scene, const gyro_model_def* def, gyro_model_id* out) {
   return guarded([&]() -> Status {
     GYRO_TRY(require(scene, "scene"));

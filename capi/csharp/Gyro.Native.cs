@@ -58,7 +58,7 @@ namespace Gyro.Native
     public static class Constants
     {
         /// <summary>The ABI this binding was written against: (major &lt;&lt; 16) | minor.</summary>
-        public const uint GYRO_ABI_VERSION = (1u << 16) | 6u;
+        public const uint GYRO_ABI_VERSION = (1u << 16) | 7u;
 
         public const uint GYRO_FEATURE_OPENMP = 1u << 0;
         public const uint GYRO_FEATURE_SIMD_SSE2 = 1u << 1;
@@ -117,6 +117,9 @@ namespace Gyro.Native
 
         public const uint GYRO_SCENE_BVH = 0;
         public const uint GYRO_SCENE_OCTREE = 1;
+        public const uint GYRO_RAY_PREFETCH_AUTO = 0;
+        public const uint GYRO_RAY_PREFETCH_ALWAYS = 1;
+        public const uint GYRO_RAY_PREFETCH_NEVER = 2;
 
         public const uint GYRO_BODY_STATIC = 0;
         public const uint GYRO_BODY_KINEMATIC = 1;
@@ -266,6 +269,14 @@ namespace Gyro.Native
     {
         Bvh = Constants.GYRO_SCENE_BVH,
         Octree = Constants.GYRO_SCENE_OCTREE,
+    }
+
+    [CEnum("gyro_ray_prefetch")]
+    public enum RayPrefetch : uint
+    {
+        Auto = Constants.GYRO_RAY_PREFETCH_AUTO,
+        Always = Constants.GYRO_RAY_PREFETCH_ALWAYS,
+        Never = Constants.GYRO_RAY_PREFETCH_NEVER,
     }
 
     [CEnum("gyro_body_type")]
@@ -948,6 +959,7 @@ namespace Gyro.Native
         [DllImport(Library, CallingConvention = Cdecl)] public static extern ModelDef gyro_model_def_default();
         [DllImport(Library, CallingConvention = Cdecl)] public static extern Status gyro_scene_create(SceneAccel accel, out SceneHandle @out);
         [DllImport(Library, CallingConvention = Cdecl)] public static extern void gyro_scene_destroy(IntPtr scene);
+        [DllImport(Library, CallingConvention = Cdecl)] public static extern Status gyro_scene_set_ray_prefetch(SceneHandle scene, RayPrefetch mode);
         [DllImport(Library, CallingConvention = Cdecl)] public static extern Status gyro_scene_add_model(SceneHandle scene, ModelDef* def, ModelId* @out);
         [DllImport(Library, CallingConvention = Cdecl)] public static extern Status gyro_scene_remove_model(SceneHandle scene, ModelId id);
         [DllImport(Library, CallingConvention = Cdecl)] public static extern Status gyro_scene_set_transform(SceneHandle scene, ModelId id, Transform* local);

@@ -490,6 +490,12 @@ namespace Gyro
             Handle = h;
         }
 
+        /// <summary>Whether ray batches prefetch each next visit's cache lines (speed only, never a result).</summary>
+        public void SetRayPrefetch(RayPrefetch mode)
+        {
+            Check.Ok(N.gyro_scene_set_ray_prefetch(Handle, mode), "gyro_scene_set_ray_prefetch");
+        }
+
         /// <summary>Adds a model; def.Mesh must be IntPtr.Zero (use AddMesh for meshes).</summary>
         public ModelId AddModel(ModelDef def)
         {

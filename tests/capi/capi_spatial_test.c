@@ -189,6 +189,15 @@ static void test_scene(gyro_scene_accel accel) {
   CHECK(prim[4] == GYRO_RAY_INVALID && model[4].index == 0 && model[4].generation == 0);
   CHECK(gyro_scene_raycast_any(scene, &rays, 5, &hits) == GYRO_OK);
   CHECK(prim[0] >= 0 && prim[4] == GYRO_RAY_INVALID);
+  /* prefetching changes speed only (ABI 1.7); bad calls change nothing */
+  CHECK(gyro_scene_set_ray_prefetch(NULL, GYRO_RAY_PREFETCH_ALWAYS) == GYRO_STATUS_NULL_ARGUMENT);
+  CHECK(gyro_scene_set_ray_prefetch(scene, 3) == GYRO_STATUS_INVALID_ARGUMENT);
+  for (gyro_ray_prefetch mode = GYRO_RAY_PREFETCH_AUTO; mode <= GYRO_RAY_PREFETCH_NEVER; ++mode) {
+    CHECK(gyro_scene_set_ray_prefetch(scene, mode) == GYRO_OK);
+    CHECK(gyro_scene_raycast_closest(scene, &rays, 5, &hits) == GYRO_OK);
+    CHECK(t[0] == 4.0f && model[0].index == sphere.index && t[2] == 4.5f && model[2].index == inst.index);
+    CHECK(t[3] == 2.0f && model[3].index == plane.index && prim[4] == GYRO_RAY_INVALID);
+  }
 
   /* queries */
   query.type = GYRO_SHAPE_SPHERE, query.reserved = 0;

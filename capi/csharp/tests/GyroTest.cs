@@ -343,6 +343,14 @@ namespace Gyro.Tests
                 Ok(float.IsPositiveInfinity(hits.T[2]) && hits.Model[2].IsNull && hits.Primitive[2] == -1, accel + ": miss: t = +inf, null model, primitive -1");
                 Near(hits.T[3], 2.0, 1e-5, accel + ": t in units of |d| = 2");
                 Ok(hits.Model[4] == box && Math.Abs(hits.T[4] - 9.0f) < 1e-5, accel + ": the box at t = " + hits.T[4]);
+                float[] before = (float[])hits.T.Clone();
+                foreach (RayPrefetch mode in new[] { RayPrefetch.Always, RayPrefetch.Never, RayPrefetch.Auto })
+                {
+                    s.SetRayPrefetch(mode);
+                    s.RaycastClosest(rays, hits);
+                    for (int k = 0; k < 5; ++k)
+                        Ok(hits.T[k] == before[k], accel + ": prefetch " + mode + " changes no t");
+                }
 
                 SceneHitBatch any = new SceneHitBatch(5, normals: false);
                 s.RaycastAny(rays, any);

@@ -25,7 +25,7 @@ pub use convex::{
     ConvexMass, ConvexPlane, ConvexPose, ConvexResult, ConvexShape,
 };
 pub use mesh::{raycast_spheres_closest, Hits, Mesh, MeshInfo, Rays, Spheres};
-pub use scene::{ModelDef, ModelId, Scene, SceneAccel, SceneHits, Transform};
+pub use scene::{ModelDef, ModelId, RayPrefetch, Scene, SceneAccel, SceneHits, Transform};
 pub use soft::{
     cloth_def, soft_cube_def, soft_mesh_def, soft_settings, ClothDef, SoftBodyId, SoftBodyStats, SoftBodyView,
     SoftCubeDef, SoftMeshDef, SoftSettings, SpringConstants, SpringFamily,

@@ -15,6 +15,15 @@ pub enum SceneAccel {
     Octree,
 }
 
+/// Whether ray batches through a BVH scene prefetch each next visit's cache lines (speed
+/// only, never a result): `Auto` (the default) when the tree exceeds 8 MiB.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RayPrefetch {
+    Auto,
+    Always,
+    Never,
+}
+
 /// Per-ray scene results: t, the model hit (null id for a miss) and its primitive (the
 /// triangle of a mesh model, 0 for other shapes, -1 for a miss, GYRO_RAY_INVALID), and
 /// optionally the normal and the barycentrics. Each slice is at least as long as the rays.
@@ -74,6 +83,16 @@ impl Scene {
         let mut raw = ptr::null_mut();
         check(unsafe { sys::gyro_scene_create(a, &mut raw) })?;
         Ok(Scene { raw: NonNull::new(raw).expect("gyro_scene_create returned GYRO_OK and NULL") })
+    }
+
+    /// Sets whether ray batches prefetch each next visit's cache lines.
+    pub fn set_ray_prefetch(&mut self, mode: RayPrefetch) -> Result<()> {
+        let m = match mode {
+            RayPrefetch::Auto => sys::GYRO_RAY_PREFETCH_AUTO,
+            RayPrefetch::Always => sys::GYRO_RAY_PREFETCH_ALWAYS,
+            RayPrefetch::Never => sys::GYRO_RAY_PREFETCH_NEVER,
+        };
+        check(unsafe { sys::gyro_scene_set_ray_prefetch(self.raw.as_ptr(), m) })
     }
 
     /// A unit sphere at the origin, identity transform, no parent.

@@ -240,6 +240,16 @@ fn scene_raycasts_name_the_model_hit() {
     assert!(same(model[2], floor_id) && close(t[2], 7.0, 1e-5) && prim[2] >= 0 && close(ny[2], 1.0, 1e-6));
     assert_eq!((model[3].index, model[3].generation, prim[3]), (0, 0, -1));
     assert!(t[3].is_infinite());
+    // Prefetching changes speed only.
+    let before = t;
+    for mode in [RayPrefetch::Always, RayPrefetch::Never, RayPrefetch::Auto] {
+        scene.set_ray_prefetch(mode).unwrap();
+        let mut t2 = [0.0f32; 4];
+        let mut model2 = [ModelId { index: 0, generation: 0 }; 4];
+        let mut hits2 = SceneHits { t: &mut t2, model: &mut model2, primitive: None, normal: None, uv: None };
+        scene.raycast_closest(&rays, &mut hits2).unwrap();
+        assert_eq!(t2.map(f32::to_bits), before.map(f32::to_bits));
+    }
 
     let near = scene.query_sphere(vec3(0.0, 0.0, 6.5), 1.0).unwrap();
     assert_eq!(near.len(), 1);
