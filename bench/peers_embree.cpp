@@ -69,24 +69,47 @@ bool commit(EmbreeScene::Impl& impl, RTCGeometry geom, RTCSceneFlags flags, std:
   return rtcGetDeviceError(impl.device) == RTC_ERROR_NONE;
 }
 
+// The rays of the one-ray and the 16-ray calls, as every method traces them.
+void set_ray(RTCRay& ray, const testing::RaySet& r, std::size_t i, float tmax) {
+  ray.org_x = r.ox[i], ray.org_y = r.oy[i], ray.org_z = r.oz[i], ray.tnear = 0.0f;
+  ray.dir_x = r.dx[i], ray.dir_y = r.dy[i], ray.dir_z = r.dz[i], ray.time = 0.0f;
+  ray.tfar = tmax, ray.mask = ~0u, ray.id = 0, ray.flags = 0;
+}
+
+void set_ray(RTCRay16& ray, int k, const testing::RaySet& r, std::size_t i, float tmax) {
+  ray.org_x[k] = r.ox[i], ray.org_y[k] = r.oy[i], ray.org_z[k] = r.oz[i], ray.tnear[k] = 0.0f;
+  ray.dir_x[k] = r.dx[i], ray.dir_y[k] = r.dy[i], ray.dir_z[k] = r.dz[i], ray.time[k] = 0.0f;
+  ray.tfar[k] = tmax, ray.mask[k] = ~0u, ray.id[k] = unsigned(k), ray.flags[k] = 0;
+}
+
+// Occluded: rtcOccluded1 (any hit: Embree sets tfar to -inf on a hit and reports no t or
+// primitive, written as t = 0 and primitive 0), else rtcIntersect1.
+template <bool Occluded>
 void trace_range1(RTCScene scene, const testing::RaySet& r, std::size_t begin, std::size_t end, float tmax,
                   RayResults& out) {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   for (std::size_t i = begin; i < end; ++i) {
     RTCRayHit rh;
-    rh.ray.org_x = r.ox[i], rh.ray.org_y = r.oy[i], rh.ray.org_z = r.oz[i], rh.ray.tnear = 0.0f;
-    rh.ray.dir_x = r.dx[i], rh.ray.dir_y = r.dy[i], rh.ray.dir_z = r.dz[i], rh.ray.time = 0.0f;
-    rh.ray.tfar = tmax, rh.ray.mask = ~0u, rh.ray.id = 0, rh.ray.flags = 0;
-    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID, rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
-    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-    rtcIntersect1(scene, &context, &rh);
-    const bool hit = rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
+    set_ray(rh.ray, r, i, tmax);
+    bool hit;
+    if constexpr (Occluded) {
+      rtcOccluded1(scene, &context, &rh.ray);
+      hit = rh.ray.tfar < 0.0f;
+      rh.ray.tfar = 0.0f, rh.hit.primID = 0;
+    } else {
+      rh.hit.geomID = RTC_INVALID_GEOMETRY_ID, rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
+      rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+      rtcIntersect1(scene, &context, &rh);
+      hit = rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
+    }
     out.t[i] = hit ? rh.ray.tfar : std::numeric_limits<float>::infinity();
     out.primitive[i] = hit ? int32_t(rh.hit.primID) : -1;
   }
 }
 
+// trace_range1 in packets of 16 consecutive rays (rtcOccluded16 or rtcIntersect16).
+template <bool Occluded>
 void trace_range16(RTCScene scene, const testing::RaySet& r, std::size_t begin, std::size_t end, float tmax,
                    RayResults& out) {
   RTCIntersectContext context;
@@ -97,62 +120,18 @@ void trace_range16(RTCScene scene, const testing::RaySet& r, std::size_t begin, 
     for (int k = 0; k < 16; ++k) {
       const std::size_t i = p + std::size_t(k);
       const bool live = i < end;
-      const std::size_t s = live ? i : begin;  // a finite ray in the dead lanes
       valid[k] = live ? -1 : 0;
-      rh.ray.org_x[k] = r.ox[s], rh.ray.org_y[k] = r.oy[s], rh.ray.org_z[k] = r.oz[s], rh.ray.tnear[k] = 0.0f;
-      rh.ray.dir_x[k] = r.dx[s], rh.ray.dir_y[k] = r.dy[s], rh.ray.dir_z[k] = r.dz[s], rh.ray.time[k] = 0.0f;
-      rh.ray.tfar[k] = tmax, rh.ray.mask[k] = ~0u, rh.ray.id[k] = unsigned(k), rh.ray.flags[k] = 0;
+      set_ray(rh.ray, k, r, live ? i : begin, tmax);  // a finite ray in the dead lanes
       rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID, rh.hit.primID[k] = RTC_INVALID_GEOMETRY_ID;
       rh.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
     }
-    rtcIntersect16(valid, scene, &context, &rh);
+    if constexpr (Occluded) rtcOccluded16(valid, scene, &context, &rh.ray);
+    else rtcIntersect16(valid, scene, &context, &rh);
     for (int k = 0; k < 16 && p + std::size_t(k) < end; ++k) {
       const std::size_t i = p + std::size_t(k);
-      const bool hit = rh.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID;
-      out.t[i] = hit ? rh.ray.tfar[k] : std::numeric_limits<float>::infinity();
-      out.primitive[i] = hit ? int32_t(rh.hit.primID[k]) : -1;
-    }
-  }
-}
-
-void occluded_range1(RTCScene scene, const testing::RaySet& r, std::size_t begin, std::size_t end, float tmax,
-                     RayResults& out) {
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
-  for (std::size_t i = begin; i < end; ++i) {
-    RTCRay ray;
-    ray.org_x = r.ox[i], ray.org_y = r.oy[i], ray.org_z = r.oz[i], ray.tnear = 0.0f;
-    ray.dir_x = r.dx[i], ray.dir_y = r.dy[i], ray.dir_z = r.dz[i], ray.time = 0.0f;
-    ray.tfar = tmax, ray.mask = ~0u, ray.id = 0, ray.flags = 0;
-    rtcOccluded1(scene, &context, &ray);
-    const bool hit = ray.tfar < 0.0f;  // Embree sets tfar to -inf on a hit
-    out.t[i] = hit ? 0.0f : std::numeric_limits<float>::infinity();
-    out.primitive[i] = hit ? 0 : -1;
-  }
-}
-
-void occluded_range16(RTCScene scene, const testing::RaySet& r, std::size_t begin, std::size_t end, float tmax,
-                      RayResults& out) {
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
-  for (std::size_t p = begin; p < end; p += 16) {
-    alignas(64) int valid[16];
-    RTCRay16 ray;
-    for (int k = 0; k < 16; ++k) {
-      const std::size_t i = p + std::size_t(k);
-      const bool live = i < end;
-      const std::size_t s = live ? i : begin;  // a finite ray in the dead lanes
-      valid[k] = live ? -1 : 0;
-      ray.org_x[k] = r.ox[s], ray.org_y[k] = r.oy[s], ray.org_z[k] = r.oz[s], ray.tnear[k] = 0.0f;
-      ray.dir_x[k] = r.dx[s], ray.dir_y[k] = r.dy[s], ray.dir_z[k] = r.dz[s], ray.time[k] = 0.0f;
-      ray.tfar[k] = tmax, ray.mask[k] = ~0u, ray.id[k] = unsigned(k), ray.flags[k] = 0;
-    }
-    rtcOccluded16(valid, scene, &context, &ray);
-    for (int k = 0; k < 16 && p + std::size_t(k) < end; ++k) {
-      const std::size_t i = p + std::size_t(k);
-      const bool hit = ray.tfar[k] < 0.0f;
-      out.t[i] = hit ? 0.0f : std::numeric_limits<float>::infinity();
-      out.primitive[i] = hit ? 0 : -1;
+      const bool hit = Occluded ? rh.ray.tfar[k] < 0.0f : rh.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID;
+      out.t[i] = !hit ? std::numeric_limits<float>::infinity() : Occluded ? 0.0f : rh.ray.tfar[k];
+      out.primitive[i] = !hit ? -1 : Occluded ? 0 : int32_t(rh.hit.primID[k]);
     }
   }
 }
@@ -222,10 +201,10 @@ void EmbreeScene::trace(const testing::RaySet& rays, std::size_t n, float tmax, 
     for (std::size_t b; (b = next.fetch_add(kChunk)) < n;) {
       const std::size_t e = std::min(n, b + kChunk);
       switch (method) {
-        case EmbreeMethod::intersect1: trace_range1(impl_->scene, rays, b, e, tmax, out); break;
-        case EmbreeMethod::intersect16: trace_range16(impl_->scene, rays, b, e, tmax, out); break;
-        case EmbreeMethod::occluded1: occluded_range1(impl_->scene, rays, b, e, tmax, out); break;
-        case EmbreeMethod::occluded16: occluded_range16(impl_->scene, rays, b, e, tmax, out); break;
+        case EmbreeMethod::intersect1: trace_range1<false>(impl_->scene, rays, b, e, tmax, out); break;
+        case EmbreeMethod::intersect16: trace_range16<false>(impl_->scene, rays, b, e, tmax, out); break;
+        case EmbreeMethod::occluded1: trace_range1<true>(impl_->scene, rays, b, e, tmax, out); break;
+        case EmbreeMethod::occluded16: trace_range16<true>(impl_->scene, rays, b, e, tmax, out); break;
       }
     }
   };

@@ -10,11 +10,11 @@
 // too (conclude_apart); gjk.cpp forms the rest. gjk.cpp does not call the scalar level's
 // instantiation for whole batches (one lane paying for every branch is slower than the
 // scalar loop); it serves the tails of the SIMD levels.
+#include "core/lane_compact.hpp"
 #include "geometry/box_face_lanes.hpp"
 #include "geometry/gjk_batch.hpp"
 #include "geometry/gjk_lanes.hpp"
 
-#include <array>
 
 namespace gyro::GYRO_ARCH_NS {
 namespace {
@@ -331,27 +331,12 @@ template <bool VerdictOnly> std::size_t pack(BoxGjkWork& w, std::size_t count, B
   return m;
 }
 #elif defined(GYRO_ARCH_AVX2)
-// For each 8-bit keep mask, the kept lanes' indices in order (4 bits each, low first): the
-// permutation that moves them to the front.
-constexpr auto kCompress = [] {
-  std::array<uint32_t, 256> t{};
-  for (unsigned m = 0; m < 256; ++m) {
-    uint32_t idx = 0;
-    int n = 0;
-    for (int k = 0; k < 8; ++k)
-      if (m >> k & 1u) idx |= uint32_t(k) << (4 * n++);
-    t[m] = idx;
-  }
-  return t;
-}();
-
 // pack() as the AVX-512 one, eight slots at a time: the kept lanes are permuted to the front
 // and all eight stored at m; the lanes past the kept ones land on slots that a later block
 // overwrites or that are past the end (m + 8 <= j + 8, so never on a slot not yet read).
 template <bool VerdictOnly> std::size_t pack(BoxGjkWork& w, std::size_t count, BoxGjkBlock& out) {
   constexpr bool verdict_only = VerdictOnly;
   std::size_t m = 0;
-  const __m256i shifts = _mm256_setr_epi32(0, 4, 8, 12, 16, 20, 24, 28);
   for (std::size_t j = 0; j < count; j += 8) {
     const std::size_t len = count - j < 8 ? count - j : 8;
     const unsigned valid = (1u << len) - 1u;
@@ -362,9 +347,9 @@ template <bool VerdictOnly> std::size_t pack(BoxGjkWork& w, std::size_t count, B
         valid & unsigned(_mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpeq_epi32(st, _mm256_setzero_si256()))));
     for (unsigned bits = valid & ~keep; bits != 0; bits &= bits - 1u)
       finish_if_valid(w, j + std::size_t(__builtin_ctz(bits)), verdict_only, out);
-    const std::size_t kept = std::size_t(__builtin_popcount(keep));
+    const std::size_t kept = compact_count(keep);
     if (m != j || kept != len) {
-      const __m256i perm = _mm256_srlv_epi32(_mm256_set1_epi32(int(kCompress[keep])), shifts);
+      const __m256i perm = compact_indices(keep);
       const __m256i pair = _mm256_maskload_epi32(reinterpret_cast<const int*>(w.pair + j), live);
       _mm256_storeu_si256(reinterpret_cast<__m256i*>(w.pair + m), _mm256_permutevar8x32_epi32(pair, perm));
       for_each_column<VerdictOnly>(w, [&](float* col) {

@@ -7,7 +7,7 @@
 // enters (one, two, several: each a coin toss on incoherent rays) plus an insertion sort,
 // together over half of a scene walk's mispredicted branches (R1: 10 of 19.5 per ray). The
 // push here has no branch: the entered slots in that order are compacted in one register
-// (a table of compactions by mask) and stored whole, codes and entry distances in two
+// (core/lane_compact.hpp) and stored whole, codes and entry distances in two
 // columns, and the depth grows by their count.
 //
 // A closest-hit answer does not depend on the visiting order (the kernels' exactness notes:
@@ -22,16 +22,13 @@
 // inside the terrain ran 22% slower (CAMERA 4%).
 #pragma once
 
+#include "core/lane_compact.hpp"
 #include "core/lanes.hpp"
 #include "spatial/bvh.hpp"
 
-#include <array>
 #include <bit>
 #include <cstdint>
 
-#if defined(GYRO_ARCH_AVX2) || defined(GYRO_ARCH_AVX512)
-#include <immintrin.h>
-#endif
 
 namespace gyro::GYRO_ARCH_NS::order {
 
@@ -47,22 +44,6 @@ inline unsigned octant(const float inv[3]) {
   return o;
 }
 
-#if defined(GYRO_ARCH_AVX2) || defined(GYRO_ARCH_AVX512)
-// kCompact[m]: byte k holds the position of m's k-th set bit; byte 0's high nibble holds the
-// count (the permute reads only a lane's low three bits).
-inline constexpr std::array<uint64_t, 256> kCompact = [] {
-  std::array<uint64_t, 256> t{};
-  for (unsigned m = 0; m < 256; ++m) {
-    uint64_t v = 0;
-    unsigned n = 0;
-    for (unsigned i = 0; i < 8; ++i)
-      if (m >> i & 1u) v |= uint64_t(i) << (8 * n++);
-    t[m] = v | uint64_t(n) << 4;
-  }
-  return t;
-}();
-#endif
-
 /// Pushes the slots in `mask` of `node` (entry distances in tn), farthest first by
 /// `node.order[oct]`, onto codes/nears at depth sp; returns the new depth.
 inline int push(const detail::BvhNode8& node, unsigned oct, const Oct& tn, unsigned mask, uint32_t* codes, float* nears,
@@ -75,13 +56,12 @@ inline int push(const detail::BvhNode8& node, unsigned oct, const Oct& tn, unsig
   // Bit i: whether that slot was entered (its mask bit moved to the lane's sign).
   const unsigned in_order = unsigned(_mm256_movemask_ps(
       _mm256_castsi256_ps(_mm256_slli_epi32(_mm256_srlv_epi32(_mm256_set1_epi32(int(mask)), back_to_front), 31))));
-  const uint64_t compact = kCompact[in_order];
-  const __m256i slots = _mm256_permutevar8x32_epi32(back_to_front, _mm256_cvtepu8_epi32(_mm_cvtsi64_si128(int64_t(compact))));
+  const __m256i slots = _mm256_permutevar8x32_epi32(back_to_front, compact_indices(in_order));
   const __m256i child = _mm256_load_si256(reinterpret_cast<const __m256i*>(node.child));
   _mm256_storeu_si256(reinterpret_cast<__m256i*>(codes + sp), _mm256_permutevar8x32_epi32(child, slots));
   const __m256 near = tn.v;
   _mm256_storeu_ps(nears + sp, _mm256_permutevar8x32_ps(near, slots));
-  return sp + int(compact >> 4 & 15u);
+  return sp + int(compact_count(in_order));
 #else
   alignas(32) float near[8];
   store(near, tn);

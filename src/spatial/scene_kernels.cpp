@@ -251,34 +251,26 @@ inline bool enter_node(Walk& w, const BvhNode8& node, Entry& next, int& sp) {
 // popping the next entry and prefetching its lines (w.next); without, a visit pops its own.
 // Both visit the same entries in the same order, so an any-hit walk reports the same hit.
 template <bool AnyHit, bool Fetch> inline bool step(const SceneRaycastArgs& a, Walk& w) {
+  // Visits `code` with the stack at depth sp; false when an any-hit walk found its hit.
+  const auto visit = [&](uint32_t code, int& sp) {
+    if (code & kLeafBit) return !visit_leaf<AnyHit>(a, w, a.leaves[code & ~kLeafBit]);
+    const BvhNode8& node = a.nodes[code];
+    Oct tn;
+    const unsigned mask = entered(w, node, tn);
+    sp = order::push(node, w.oct, tn, mask, w.stack_code, w.stack_near, sp);
+    return true;
+  };
   if constexpr (Fetch) {
-    const uint32_t code = w.next.code;
-    if (code & kLeafBit) {
-      if (visit_leaf<AnyHit>(a, w, a.leaves[code & ~kLeafBit])) return false;
-    } else {
-      const BvhNode8& node = a.nodes[code];
-      Oct tn;
-      const unsigned mask = entered(w, node, tn);
-      w.sp = order::push(node, w.oct, tn, mask, w.stack_code, w.stack_near, w.sp);
-    }
-    return next_entry<Fetch>(a, w);
+    return visit(w.next.code, w.sp) && next_entry<Fetch>(a, w);
   } else {
     int sp = w.sp;
     do {
       if (sp == 0) return false;
       --sp;
     } while (w.stack_near[sp] > w.limit);
-    const uint32_t code = w.stack_code[sp];
-    if (code & kLeafBit) {
-      if (visit_leaf<AnyHit>(a, w, a.leaves[code & ~kLeafBit])) return false;
-    } else {
-      const BvhNode8& node = a.nodes[code];
-      Oct tn;
-      const unsigned mask = entered(w, node, tn);
-      sp = order::push(node, w.oct, tn, mask, w.stack_code, w.stack_near, sp);
-    }
+    const bool going = visit(w.stack_code[sp], sp);
     w.sp = sp;
-    return true;
+    return going;
   }
 }
 
