@@ -14,11 +14,13 @@
 // over its models), with the same nodes and leaf blocks of up to four item indices.
 #pragma once
 
+#include "core/default_init.hpp"
 #include "gyro/mesh.hpp"
 #include "gyro/triangle_mesh.hpp"
 
 #include <cstddef>
 #include <cstdint>
+#include <type_traits>
 #include <vector>
 
 namespace gyro::detail {
@@ -43,18 +45,23 @@ struct alignas(64) BvhNode8 {
   /// negative along axis k), nibble j the j-th: by the children's centres along the
   /// octant's diagonal, ties in slot order, empty slots last. A closest-hit walk pushes the
   /// entered children in this order without sorting their entry distances (bvh_order.hpp).
-  uint32_t order[8] = {};
+  uint32_t order[8];
 };
 
 struct alignas(64) BvhLeaf4 {
   float corner[9][4];  ///< ax, ay, az, bx, by, bz, cx, cy, cz per lane
   uint32_t triangle[4];
-  uint32_t unused[8] = {};  ///< to the cache line, zeroed so the bytes are defined
+  uint32_t unused[8];  ///< to the cache line, zeroed so the bytes are defined
 };
 
+// Trivial, so a build's resize() writes nothing and its parallel fill, which writes every
+// byte of every node and leaf block (padding included: there is none), first-touches them.
+static_assert(std::is_trivially_default_constructible_v<BvhNode8> && sizeof(BvhNode8) == 256);
+static_assert(std::is_trivially_default_constructible_v<BvhLeaf4> && sizeof(BvhLeaf4) == 192);
+
 struct Bvh8 {
-  std::vector<BvhNode8> nodes;  ///< nodes[0] is the root
-  std::vector<BvhLeaf4> leaves;
+  DefaultInitVector<BvhNode8> nodes;  ///< nodes[0] is the root
+  DefaultInitVector<BvhLeaf4> leaves;
   AABB bounds;
   BvhStats stats;
 };
@@ -66,8 +73,8 @@ struct alignas(16) BvhItems4 {
 
 /// A BVH over boxes: nodes as Bvh8's, leaves holding item indices (the input order).
 struct BoxBvh8 {
-  std::vector<BvhNode8> nodes;  ///< nodes[0] is the root (all slots empty when there are no boxes)
-  std::vector<BvhItems4> leaves;
+  DefaultInitVector<BvhNode8> nodes;  ///< nodes[0] is the root (all slots empty when there are no boxes)
+  DefaultInitVector<BvhItems4> leaves;
   AABB bounds;
   BvhStats stats;
 };

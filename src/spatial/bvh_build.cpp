@@ -8,14 +8,18 @@
 // the lower axis, the lower bin, the earlier child); partitions are stable and the median
 // fallback sorts by (centroid, index). The same mesh always gives the same bytes.
 //
-// Parallel (core/parallel's fixed chunks, so any thread count gives the same bytes): the
-// binary tree's top is built on the calling thread, its nodes' boxes and bins gathered in
-// chunks in parallel (per-chunk bins merged: min, max and counts, exact in any order); the
-// subtrees below kTaskPrims primitives are built in parallel, each into its own node list
-// over its own range of the primitive order, and linked in afterwards. A subtree's shape is
-// a function of its range alone, and the wide tree is emitted from the binary tree's shape,
-// not from where its nodes were stored.
-//
+// Parallel (core/parallel's fixed chunks, so any thread count gives the same bytes), in four
+// phases, each a function of the inputs alone:
+// - the binary tree's top, level by level: each level's boxes, bins and stable partitions
+//   run over fixed chunks of all its ranges at once, down to ranges of kTaskPrims;
+// - those ranges' subtrees, built depth first as parallel tasks, each into its own node list
+//   over its own range of the primitive order, and linked in afterwards;
+// - the wide tree's layout: its top placed depth first, its subtrees below kSplitDepth each
+//   placed into a layout of their own in parallel, and the runs spliced into the order one
+//   depth-first emission gives (the wide tree follows the binary tree's shape, not where its
+//   nodes were stored);
+// - every node and leaf block written whole, in parallel.
+
 // The SAH cost counts 4-wide leaf blocks, not triangles (a block of 1 to 4 triangles costs
 // one lane test), so a node of at most 4 triangles is always a leaf.
 //
@@ -24,6 +28,7 @@
 // primitive boxes and the leaf writer differ, so both get the same tree for the same boxes.
 #include "spatial/bvh.hpp"
 
+#include "core/default_init.hpp"
 #include "core/parallel.hpp"
 
 #include <algorithm>
@@ -86,10 +91,12 @@ struct Bins {
   }
 };
 
-// A subtree left for the parallel phase: its range, its depth, and the node standing for it.
+// A subtree left for the parallel phase: its range, its depth, the node standing for it, and
+// that node's boxes (already gathered, the subtree's root does not gather them again).
 struct Task {
   uint32_t first, count, node;
   std::size_t depth;
+  Box box, cbox;
 };
 
 template <class Node> constexpr int width_of = int(sizeof(Node::child) / sizeof(uint32_t));
@@ -132,6 +139,71 @@ inline void set_orders(BvhNode8& n) {
 
 double blocks(uint32_t n) { return double((n + kLeafSize - 1) / kLeafSize); }
 
+// Where a node's centroids fall into bins along each axis (scale 0: a flat axis, all in bin 0).
+struct Grid {
+  float lo[3], scale[3];
+  explicit Grid(const Box& cbox) {
+    for (int axis = 0; axis < 3; ++axis) {
+      const float ext = cbox.hi[axis] - cbox.lo[axis];
+      lo[axis] = cbox.lo[axis];
+      scale[axis] = ext > 0.0f ? float(kBins) / ext : 0.0f;
+      // A subnormal extent overflows the scale: as good as flat, left to the median split.
+      if (!(scale[axis] < kInf)) scale[axis] = 0.0f;
+    }
+  }
+  // Clamped as a float before the conversion: a float past INT_MAX (or NaN) has no int.
+  int bin(const F4& c, int axis) const {
+    const float f = (c[axis] - lo[axis]) * scale[axis];
+    if (!(f >= 0.0f)) return 0;
+    return f < float(kBins) ? int(f) : kBins - 1;
+  }
+};
+
+// A split: primitives whose centroid falls in bins [0, bin] along axis go left (axis -1: none).
+struct Plane {
+  int axis = -1, bin = 0;
+};
+
+// Binned SAH: the best plane between bins on any axis.
+Plane best_plane(const Bins& bins, uint32_t count, const Grid& grid) {
+  const auto& bin_box = bins.box;
+  const auto& bin_count = bins.count;
+  double best_cost = kInf;
+  Plane best;
+  for (int axis = 0; axis < 3; ++axis) {
+    if (grid.scale[axis] == 0.0f) continue;
+    // Right-to-left sweep: the cost of everything right of each plane. An empty bin
+    // changes neither the box nor the count, so its plane costs what the plane before it
+    // costs, to the bit: it is not evaluated (most bins of the many small nodes are empty;
+    // the sweeps were a third of the build).
+    double right_cost[kBins];
+    Box acc;
+    uint32_t n = 0;
+    double last = 0.0;  // an empty right side: area 0 times 0 blocks
+    for (int b = kBins - 1; b > 0; --b) {
+      if (bin_count[axis][b] != 0) {
+        acc.grow(bin_box[axis][b]);
+        n += bin_count[axis][b];
+        last = acc.half_area() * blocks(n);
+      }
+      right_cost[b] = last;
+    }
+    acc = Box();
+    n = 0;
+    // A plane after an empty bin repeats the plane before it, which the strict < below
+    // already preferred (or skipped, with the same n).
+    for (int b = 0; b < kBins - 1; ++b) {
+      if (bin_count[axis][b] == 0) continue;
+      acc.grow(bin_box[axis][b]);
+      n += bin_count[axis][b];
+      if (n == count) break;
+      const double cost = acc.half_area() * blocks(n) + right_cost[b + 1];
+      if (cost < best_cost) best_cost = cost, best = {axis, b};
+    }
+  }
+  return best;
+}
+
 class Builder {
  public:
   // prim[i] is primitive i's box; the leaf writer receives primitive indices.
@@ -140,75 +212,135 @@ class Builder {
     centroid_.resize(n);
     order_.resize(n);
     scratch_.resize(n);
-    for (std::size_t i = 0; i < n; ++i) {
-      const Box& b = prim_[i];
-      centroid_[i] = (b.lo + b.hi) * 0.5f;
-      order_[i] = uint32_t(i);
-    }
+    side_.resize(n);
+    parallel_for(n, kChunkPrims, [&](std::size_t b, std::size_t e) {
+      for (std::size_t i = b; i < e; ++i) {
+        centroid_[i] = (prim_[i].lo + prim_[i].hi) * 0.5f;
+        order_[i] = uint32_t(i);
+      }
+    });
   }
 
-  // Out is Bvh8 or BoxBvh8; leaf(block, items, count) fills a leaf block with binary leaf
-  // items[0, count).
+  // Out is Bvh8 or BoxBvh8; leaf(block, items, count) writes every byte of a leaf block
+  // holding binary leaf items[0, count).
   template <class Out, class Leaf> Out run(Leaf&& leaf) {
+    using Node = typename decltype(Out::nodes)::value_type;
+    static_assert(width_of<Node> == kWidth);
     std::vector<Task> tasks;
-    const uint32_t root = build(nodes_, 0, uint32_t(order_.size()), 0, &tasks);
+    build_top(tasks);
     build_tasks(tasks);
+    constexpr uint32_t root = 0;
     Out out;
-    out.nodes.reserve(nodes_.size() / 2 + 1);
-    out.leaves.reserve(order_.size() / 2 + 1);
     const Box& rb = nodes_[root].box;
     out.bounds = aabb_from_min_max({rb.lo[0], rb.lo[1], rb.lo[2]}, {rb.hi[0], rb.hi[1], rb.hi[2]});
-    root_area_ = std::max(rb.half_area(), 1e-300);
+    const double root_area = std::max(rb.half_area(), 1e-300);
     // The root is always a wide node, even over a single leaf, so traversal has one shape.
-    std::size_t depth = 0;
+    // Below kSplitDepth the layout is placed in parallel, one subtree per layout.
+    Layout top;
+    std::vector<Layout> sub;
     if (nodes_[root].count > 0) {
-      out.nodes.push_back(empty_node<typename decltype(out.nodes)::value_type>());
-      set_child(out.nodes[0], 0, nodes_[root].box, emit_leaf(out, nodes_[root]));
-      sah_ += 1.0;
-      depth = 1;
+      top.wide.push_back({root, 1, {root}, {kLeafBit}});
+      top.leaf.push_back(root);
+      top.max_depth = 1;
     } else {
-      emit(out, root, 1, depth);
+      std::vector<uint32_t> deferred;
+      place(top, root, 1, &deferred);
+      sub.resize(deferred.size());
+      parallel_for(sub.size(), 1, [&](std::size_t b, std::size_t e) {
+        for (std::size_t d = b; d < e; ++d) place(sub[d], deferred[d], kSplitDepth, nullptr);
+      });
     }
-    // The emission fixed every node's and leaf block's place; what each holds is a function
-    // of its own inputs, filled in parallel (they were a sixth of R2's build, on one thread).
-    parallel_for(out.leaves.size(), 4096, [&](std::size_t b, std::size_t e) {
-      for (std::size_t k = b; k < e; ++k) leaf(out.leaves[k], order_.data() + leaf_range_[k][0], leaf_range_[k][1]);
+    // The numbering one depth-first emission gives: the top's order with each subtree's
+    // layout spliced in where its root stands.
+    std::vector<uint32_t> top_index(top.wide.size()), top_leaf(top.leaf.size());
+    uint32_t node_count = 0, leaf_count = 0;
+    assemble(top, sub, 0, node_count, leaf_count, top_index, top_leaf);
+    // What each node and leaf block holds is a function of its own inputs, written whole in
+    // parallel (with the pages' first touches: the serial emission that wrote them was most
+    // of the build's serial time on two threads).
+    out.nodes.resize(node_count);
+    out.leaves.resize(leaf_count);
+    std::vector<double> node_term(node_count), leaf_term(leaf_count);  // their shares of the SAH cost
+    const auto write_node = [&](const Wide& w, uint32_t at, const uint32_t* codes) {
+      Node node = empty_node<Node>();
+      for (uint32_t j = 0; j < w.n; ++j) set_child(node, int(j), nodes_[w.kid[j]].box, codes[j]);
+      set_orders(node);
+      out.nodes[at] = node;
+      node_term[at] = nodes_[w.self].box.half_area() / root_area;
+    };
+    const auto write_leaf = [&](uint32_t binary, uint32_t at) {
+      const BinaryNode& b = nodes_[binary];
+      leaf(out.leaves[at], order_.data() + b.first, b.count);
+      leaf_term[at] = b.box.half_area() / root_area;
+    };
+    parallel_for(sub.size() + 1, 1, [&](std::size_t b, std::size_t e) {
+      for (std::size_t d = b; d < e; ++d) {
+        if (d == sub.size()) {
+          for (std::size_t k = 0; k < top.wide.size(); ++k) write_node(top.wide[k], top_index[k], top.wide[k].code);
+          for (std::size_t k = 0; k < top.leaf.size(); ++k) write_leaf(top.leaf[k], top_leaf[k]);
+          continue;
+        }
+        const Layout& l = sub[d];
+        for (std::size_t k = 0; k < l.wide.size(); ++k) {
+          uint32_t codes[kWidth];
+          for (uint32_t j = 0; j < l.wide[k].n; ++j) {
+            const uint32_t c = l.wide[k].code[j];
+            codes[j] = c & kLeafBit ? kLeafBit | (l.leaf_base + (c & ~kLeafBit)) : l.node_base + c;
+          }
+          write_node(l.wide[k], l.node_base + uint32_t(k), codes);
+        }
+        for (std::size_t k = 0; k < l.leaf.size(); ++k) write_leaf(l.leaf[k], l.leaf_base + uint32_t(k));
+      }
     });
-    parallel_for(out.nodes.size(), 1024, [&](std::size_t b, std::size_t e) {
-      for (std::size_t k = b; k < e; ++k) set_orders(out.nodes[k]);
-    });
+    // The expected cost of a random ray: node tests, then leaf block tests, each in index
+    // order (a root over a single leaf counts 1).
+    double sah = 0.0;
+    if (nodes_[root].count > 0) {
+      sah = leaf_term[0] + 1.0;
+    } else {
+      for (double t : node_term) sah += t;
+      for (double t : leaf_term) sah += t;
+    }
+    std::size_t depth = top.max_depth;
+    for (const Layout& l : sub) depth = std::max(depth, l.max_depth);
     out.stats.nodes = out.nodes.size();
     out.stats.leaves = out.leaves.size();
     out.stats.max_depth = depth;
     out.stats.bytes = out.nodes.size() * sizeof(out.nodes[0]) + out.leaves.size() * sizeof(out.leaves[0]);
-    out.stats.sah_cost = sah_;
+    out.stats.sah_cost = sah;
     return out;
   }
 
  private:
-  std::vector<Box> prim_;
-  std::vector<F4> centroid_;
-  std::vector<uint32_t> order_;
-  std::vector<std::array<uint32_t, 2>> leaf_range_;  // leaf block k: its first item in order_, its count
-  std::vector<uint32_t> scratch_;  // sah_split's right side, before it is copied back
-  std::vector<BinaryNode> nodes_;
-  double root_area_ = 1.0;
-  double sah_ = 0.0;
+  static constexpr int kWidth = 8;
+  static constexpr uint32_t kNoParent = 0xFFFFFFFFu;
 
-  // Runs f(begin, end) over [first, first + count) in chunks of kChunkPrims, in parallel
-  // where there are several, each with its own accumulator (acc[k] for chunk k).
-  template <class Acc, class F> void chunked(uint32_t first, uint32_t count, std::vector<Acc>& acc, F&& f) {
-    const std::size_t chunks = (std::size_t(count) + kChunkPrims - 1) / kChunkPrims;
-    acc.assign(chunks, Acc{});
-    const auto body = [&](std::size_t b, std::size_t e) {
-      for (std::size_t k = b; k < e; ++k) {
-        const uint32_t lo = first + uint32_t(k) * kChunkPrims;
-        f(acc[k], lo, std::min(first + count, lo + kChunkPrims));
-      }
-    };
-    if (chunks > 1) parallel_for(chunks, 1, body);
-    else body(0, chunks);
-  }
+  // Wide nodes at this depth root layouts of their own, placed in parallel (up to 8^3 of them).
+  static constexpr std::size_t kSplitDepth = 4;
+  // In the top layout, a child that roots a subtree layout (its index in the list).
+  static constexpr uint32_t kSubBit = 0x40000000u;
+
+  // A wide node as a layout placed it: the binary node it stands for, its binary kids and
+  // their codes (numbered within its layout until the assembly).
+  struct Wide {
+    uint32_t self, n;
+    uint32_t kid[kWidth];
+    uint32_t code[kWidth];
+  };
+  // A depth-first run of wide nodes and leaf blocks (the binary leaf of each).
+  struct Layout {
+    std::vector<Wide> wide;
+    std::vector<uint32_t> leaf;
+    std::size_t max_depth = 0;
+    uint32_t node_base = 0, leaf_base = 0;  // its first node and leaf block in the output
+  };
+
+  std::vector<Box> prim_;
+  DefaultInitVector<F4> centroid_;
+  DefaultInitVector<uint32_t> order_;
+  DefaultInitVector<uint32_t> scratch_;  // a partition's right side (or, at the top, both sides)
+  DefaultInitVector<uint8_t> side_;      // at the top: 1 where a primitive goes left
+  std::vector<BinaryNode> nodes_;
 
   void node_boxes(uint32_t first, uint32_t end, Box& box, Box& cbox) const {
     for (uint32_t i = first; i < end; ++i) {
@@ -217,79 +349,12 @@ class Builder {
     }
   }
 
-  // Builds the subtree over order_[first, first + count) into `nodes`; returns its root.
-  // With `defer`, subtrees of at most kTaskPrims primitives are not built but listed there,
-  // each standing as a node of its box with no children yet.
-  uint32_t build(std::vector<BinaryNode>& nodes, uint32_t first, uint32_t count, std::size_t depth,
-                 std::vector<Task>* defer) {
-    Box box, cbox;
-    if (count >= 2 * kChunkPrims) {
-      std::vector<std::array<Box, 2>> parts;
-      chunked(first, count, parts, [&](std::array<Box, 2>& acc, uint32_t b, uint32_t e) { node_boxes(b, e, acc[0], acc[1]); });
-      for (const auto& part : parts) box.grow(part[0]), cbox.grow(part[1]);
-    } else {
-      node_boxes(first, first + count, box, cbox);
-    }
-    const uint32_t index = uint32_t(nodes.size());
-    nodes.push_back({box, 0, 0, 0, 0});
-    if (count <= kLeafSize) {
-      nodes[index].first = first, nodes[index].count = count;
-      return index;
-    }
-    if (defer && count <= kTaskPrims) {
-      defer->push_back({first, count, index, depth});
-      return index;
-    }
-    uint32_t left_count = 0;
-    // Past this depth only median splits, which end within log2(count) <= 31 more levels.
-    if (depth + 33 < kBvhMaxDepth) left_count = sah_split(first, count, cbox);
-    if (left_count == 0 || left_count == count) left_count = median_split(first, count, cbox);
-    const uint32_t l = build(nodes, first, left_count, depth + 1, defer);
-    const uint32_t r = build(nodes, first + left_count, count - left_count, depth + 1, defer);
-    nodes[index].left = l, nodes[index].right = r;
-    return index;
-  }
-
-  // Builds the deferred subtrees in parallel, then appends each one's nodes (its root in
-  // place of the node standing for it, its other indices moved past the nodes before it).
-  void build_tasks(const std::vector<Task>& tasks) {
-    std::vector<std::vector<BinaryNode>> sub(tasks.size());
-    parallel_for(tasks.size(), 1, [&](std::size_t b, std::size_t e) {
-      for (std::size_t t = b; t < e; ++t) build(sub[t], tasks[t].first, tasks[t].count, tasks[t].depth, nullptr);
-    });
-    for (std::size_t t = 0; t < tasks.size(); ++t) {
-      const uint32_t base = uint32_t(nodes_.size()) - 1;  // local index 1 lands at nodes_.size()
-      const auto moved = [&](BinaryNode n) {
-        if (n.count == 0) n.left += base, n.right += base;
-        return n;
-      };
-      nodes_[tasks[t].node] = moved(sub[t][0]);
-      for (std::size_t k = 1; k < sub[t].size(); ++k) nodes_.push_back(moved(sub[t][k]));
-    }
-  }
-
-  // Clamped as a float before the conversion: a float past INT_MAX (or NaN) has no int.
-  int bin_of(float c, float lo, float scale) const {
-    const float f = (c - lo) * scale;
-    if (!(f >= 0.0f)) return 0;
-    return f < float(kBins) ? int(f) : kBins - 1;
-  }
-
-  // Binned SAH: the best plane between bins on any axis; returns the left count (0 if none).
-  // One pass bins every primitive on all three axes (its box and centroid are read once), and
-  // the partition is stable through a scratch buffer, with no allocation.
-  uint32_t sah_split(uint32_t first, uint32_t count, const Box& cbox) {
-    float lo[3], scale[3];
-    for (int axis = 0; axis < 3; ++axis) {
-      const float ext = cbox.hi[axis] - cbox.lo[axis];
-      lo[axis] = cbox.lo[axis];
-      scale[axis] = ext > 0.0f ? float(kBins) / ext : 0.0f;  // 0: a flat axis, all in bin 0
-      // A subnormal extent overflows the scale: as good as flat, left to the median split.
-      if (!(scale[axis] < kInf)) scale[axis] = 0.0f;
-    }
-    // bin_of() on the three axes at once: the same operations and the same clamps.
-    const F4 lo4 = f4(lo), scale4 = f4(scale);
-    const auto bin_one = [&](Bins& bins, uint32_t p) {
+  // A primitive's bins along all three axes from one vector expression (Grid::bin()'s
+  // operations and clamps, lane by lane).
+  void bin_range(Bins& bins, const Grid& grid, uint32_t first, uint32_t end) const {
+    const F4 lo4 = f4(grid.lo), scale4 = f4(grid.scale);
+    for (uint32_t i = first; i < end; ++i) {
+      const uint32_t p = order_[i];
       F4 f = (centroid_[p] - lo4) * scale4;
       f = f >= 0.0f ? f : F4{};  // NaN too
       f = f < float(kBins) ? f : F4{} + float(kBins - 1);
@@ -298,60 +363,206 @@ class Builder {
         bins.box[axis][b[axis]].grow(prim_[p]);
         ++bins.count[axis][b[axis]];
       }
-    };
-    const auto bin = [&](Bins& bins, uint32_t b0, uint32_t e0) {
-      for (uint32_t i = b0; i < e0; ++i) bin_one(bins, order_[i]);
-    };
-    Bins bins;
-    if (count >= 2 * kChunkPrims) {
-      std::vector<Bins> parts;
-      chunked(first, count, parts, bin);
-      for (const Bins& part : parts) bins.merge(part);
-    } else {
-      bin(bins, first, first + count);
     }
-    const auto& bin_box = bins.box;
-    const auto& bin_count = bins.count;
-    double best_cost = kInf;
-    int best_axis = -1, best_bin = 0;
-    for (int axis = 0; axis < 3; ++axis) {
-      if (scale[axis] == 0.0f) continue;
-      // Right-to-left sweep: the cost of everything right of each plane. An empty bin
-      // changes neither the box nor the count, so its plane costs what the plane before it
-      // costs, to the bit: it is not evaluated (most bins of the many small nodes are empty;
-      // the sweeps were a third of the build).
-      double right_cost[kBins];
-      Box acc;
-      uint32_t n = 0;
-      double last = 0.0;  // an empty right side: area 0 times 0 blocks
-      for (int b = kBins - 1; b > 0; --b) {
-        if (bin_count[axis][b] != 0) {
-          acc.grow(bin_box[axis][b]);
-          n += bin_count[axis][b];
-          last = acc.half_area() * blocks(n);
+  }
+
+  // The binary tree's top, level by level down to ranges of kTaskPrims, which are listed
+  // in `tasks` (each standing as a node of its box with no children yet). A level's bins
+  // and partitions each run as one parallel loop over fixed chunks of all its ranges: a
+  // recursion left one thread partitioning the root's primitives, then its halves', while
+  // the others waited (the top was a fifth of R2's build on two threads and did not scale).
+  // Each range gets the decisions a recursion would give it (bins and boxes merged exactly,
+  // the partition stable), and the wide tree is emitted from the binary tree's shape, not
+  // from where its nodes are stored: the same bytes.
+  void build_top(std::vector<Task>& tasks) {
+    struct Open {
+      uint32_t first, count, parent;
+      int side;
+      std::size_t depth;
+      bool known;  // box and cbox gathered by the parent's partition
+      Box box, cbox;
+    };
+    struct Piece {
+      uint32_t range, begin, end;
+    };
+    // A piece's partition: its left count and both sides' boxes and centroid boxes.
+    struct Split {
+      uint32_t left = 0;
+      Box box[2], cbox[2];
+    };
+    std::vector<Open> level(1), next;
+    level[0].first = 0, level[0].count = uint32_t(order_.size()), level[0].parent = kNoParent;
+    level[0].side = 0, level[0].depth = 0, level[0].known = false;
+    while (!level.empty()) {
+      std::vector<Piece> pieces;
+      for (uint32_t r = 0; r < level.size(); ++r)
+        for (uint32_t b = level[r].first, e = b + level[r].count; b < e; b += std::min(kChunkPrims, e - b))
+          pieces.push_back({r, b, b + std::min(kChunkPrims, e - b)});
+      const auto each_piece = [&](auto&& f) {
+        parallel_for(pieces.size(), 1, [&](std::size_t b, std::size_t e) {
+          for (std::size_t k = b; k < e; ++k) f(k, pieces[k]);
+        });
+      };
+      std::vector<Split> part(pieces.size());
+      each_piece([&](std::size_t k, const Piece& p) {
+        if (!level[p.range].known) node_boxes(p.begin, p.end, part[k].box[0], part[k].cbox[0]);
+      });
+      for (std::size_t k = 0; k < pieces.size(); ++k) {
+        Open& o = level[pieces[k].range];
+        if (!o.known) o.box.grow(part[k].box[0]), o.cbox.grow(part[k].cbox[0]);
+      }
+      // Which ranges split here, by SAH (1) or by the median (2).
+      std::vector<uint8_t> split(level.size(), 0);
+      std::vector<uint32_t> node(level.size());
+      std::vector<Grid> grid;
+      grid.reserve(level.size());
+      for (uint32_t r = 0; r < level.size(); ++r) {
+        const Open& o = level[r];
+        grid.emplace_back(o.cbox);
+        node[r] = uint32_t(nodes_.size());
+        nodes_.push_back({o.box, 0, 0, 0, 0});
+        if (o.parent != kNoParent) (o.side ? nodes_[o.parent].right : nodes_[o.parent].left) = node[r];
+        if (o.count <= kLeafSize) nodes_[node[r]].first = o.first, nodes_[node[r]].count = o.count;
+        else if (o.count <= kTaskPrims) tasks.push_back({o.first, o.count, node[r], o.depth, o.box, o.cbox});
+        // Past this depth only median splits, which end within log2(count) <= 31 more levels.
+        else split[r] = o.depth + 33 < kBvhMaxDepth ? 1 : 2;
+      }
+      std::vector<Bins> bins(pieces.size());
+      each_piece([&](std::size_t k, const Piece& p) {
+        if (split[p.range] == 1) bin_range(bins[k], grid[p.range], p.begin, p.end);
+      });
+      std::vector<Bins> merged(level.size());
+      for (std::size_t k = 0; k < pieces.size(); ++k)
+        if (split[pieces[k].range] == 1) merged[pieces[k].range].merge(bins[k]);
+      std::vector<Plane> plane(level.size());
+      for (uint32_t r = 0; r < level.size(); ++r)
+        if (split[r] == 1) plane[r] = best_plane(merged[r], level[r].count, grid[r]);
+      // The stable partition in parallel: each piece sorts its items into its own stretch of
+      // scratch_ (the left side forward, the right side backward from its end) and gathers
+      // both sides' boxes for the next level; the counts then give every piece its places.
+      for (Split& sp : part) sp = Split{};
+      each_piece([&](std::size_t k, const Piece& p) {
+        const Plane& pl = plane[p.range];
+        if (pl.axis < 0) return;
+        Box box[2], cbox[2];
+        uint32_t l = p.begin, r = p.end;
+        for (uint32_t i = p.begin; i < p.end; ++i) {
+          const uint32_t q = order_[i];
+          const F4 c = centroid_[q];
+          if (grid[p.range].bin(c, pl.axis) > pl.bin) {
+            scratch_[--r] = q;
+            box[1].grow(prim_[q]), cbox[1].grow(c);
+          } else {
+            scratch_[l++] = q;
+            box[0].grow(prim_[q]), cbox[0].grow(c);
+          }
         }
-        right_cost[b] = last;
+        Split& sp = part[k];
+        sp.left = l - p.begin;
+        for (int side = 0; side < 2; ++side) sp.box[side] = box[side], sp.cbox[side] = cbox[side];
+      });
+      std::vector<uint32_t> left_total(level.size(), 0), left_at(pieces.size()), right_at(pieces.size());
+      for (std::size_t k = 0; k < pieces.size(); ++k) {
+        const uint32_t r = pieces[k].range;
+        left_at[k] = left_total[r];
+        right_at[k] = pieces[k].begin - level[r].first - left_total[r];
+        left_total[r] += part[k].left;
       }
-      acc = Box();
-      n = 0;
-      // A plane after an empty bin repeats the plane before it, which the strict < below
-      // already preferred (or skipped, with the same n).
-      for (int b = 0; b < kBins - 1; ++b) {
-        if (bin_count[axis][b] == 0) continue;
-        acc.grow(bin_box[axis][b]);
-        n += bin_count[axis][b];
-        if (n == count) break;
-        const double cost = acc.half_area() * blocks(n) + right_cost[b + 1];
-        if (cost < best_cost) best_cost = cost, best_axis = axis, best_bin = b;
+      // A plane with everything on one side partitions nothing: the median split follows.
+      for (uint32_t r = 0; r < level.size(); ++r)
+        if (plane[r].axis >= 0 && (left_total[r] == 0 || left_total[r] == level[r].count)) plane[r].axis = -1;
+      each_piece([&](std::size_t k, const Piece& p) {
+        if (plane[p.range].axis < 0) return;
+        const uint32_t first = level[p.range].first, mid = p.begin + part[k].left;
+        std::copy(scratch_.data() + p.begin, scratch_.data() + mid, order_.data() + first + left_at[k]);
+        std::reverse_copy(scratch_.data() + mid, scratch_.data() + p.end,
+                          order_.data() + first + left_total[p.range] + right_at[k]);
+      });
+      next.clear();
+      for (uint32_t r = 0; r < level.size(); ++r) {
+        if (!split[r]) continue;
+        const Open& o = level[r];
+        const bool known = plane[r].axis >= 0;
+        const uint32_t left = known ? left_total[r] : median_split(o.first, o.count, o.cbox);
+        next.push_back({o.first, left, node[r], 0, o.depth + 1, known, {}, {}});
+        next.push_back({o.first + left, o.count - left, node[r], 1, o.depth + 1, known, {}, {}});
       }
+      // The children's boxes, merged from their parent's pieces.
+      for (std::size_t k = 0, c = 0; k < pieces.size(); ++k) {
+        const uint32_t r = pieces[k].range;
+        if (!split[r]) continue;
+        while (next[c].parent != node[r]) c += 2;
+        if (!next[c].known) continue;
+        for (int side = 0; side < 2; ++side)
+          next[c + side].box.grow(part[k].box[side]), next[c + side].cbox.grow(part[k].cbox[side]);
+      }
+      level.swap(next);
     }
-    if (best_axis < 0) return 0;
+  }
+
+  // Builds the subtree over order_[first, first + count) into `nodes`; returns its root.
+  // `known` holds the range's box and centroid box when they are already gathered.
+  uint32_t build(std::vector<BinaryNode>& nodes, uint32_t first, uint32_t count, std::size_t depth,
+                 const Task* known = nullptr) {
+    Box box, cbox;
+    if (known) box = known->box, cbox = known->cbox;
+    else node_boxes(first, first + count, box, cbox);
+    const uint32_t index = uint32_t(nodes.size());
+    nodes.push_back({box, 0, 0, 0, 0});
+    if (count <= kLeafSize) {
+      nodes[index].first = first, nodes[index].count = count;
+      return index;
+    }
+    uint32_t left_count = 0;
+    // Past this depth only median splits, which end within log2(count) <= 31 more levels.
+    if (depth + 33 < kBvhMaxDepth) left_count = sah_split(first, count, cbox);
+    if (left_count == 0 || left_count == count) left_count = median_split(first, count, cbox);
+    const uint32_t l = build(nodes, first, left_count, depth + 1);
+    const uint32_t r = build(nodes, first + left_count, count - left_count, depth + 1);
+    nodes[index].left = l, nodes[index].right = r;
+    return index;
+  }
+
+  // Builds the listed subtrees in parallel, then puts each one's nodes in place (its root in
+  // place of the node standing for it, its other indices moved past the nodes before it).
+  void build_tasks(const std::vector<Task>& tasks) {
+    std::vector<std::vector<BinaryNode>> sub(tasks.size());
+    parallel_for(tasks.size(), 1, [&](std::size_t b, std::size_t e) {
+      for (std::size_t t = b; t < e; ++t) build(sub[t], tasks[t].first, tasks[t].count, tasks[t].depth, &tasks[t]);
+    });
+    std::vector<uint32_t> base(tasks.size());
+    std::size_t total = nodes_.size();
+    for (std::size_t t = 0; t < tasks.size(); ++t) {
+      base[t] = uint32_t(total) - 1;  // local index 1 lands at base + 1
+      total += sub[t].size() - 1;
+    }
+    nodes_.resize(total);
+    parallel_for(tasks.size(), 1, [&](std::size_t b, std::size_t e) {
+      for (std::size_t t = b; t < e; ++t) {
+        const auto moved = [&](BinaryNode n) {
+          if (n.count == 0) n.left += base[t], n.right += base[t];
+          return n;
+        };
+        nodes_[tasks[t].node] = moved(sub[t][0]);
+        for (std::size_t k = 1; k < sub[t].size(); ++k) nodes_[base[t] + k] = moved(sub[t][k]);
+      }
+    });
+  }
+
+  // Binned SAH for a task's node: the best plane, and the stable partition through a scratch
+  // buffer with no allocation; returns the left count (0 if no plane).
+  uint32_t sah_split(uint32_t first, uint32_t count, const Box& cbox) {
+    const Grid grid(cbox);
+    Bins bins;
+    bin_range(bins, grid, first, first + count);
+    const Plane plane = best_plane(bins, count, grid);
+    if (plane.axis < 0) return 0;
     uint32_t* const range = order_.data() + first;
     uint32_t* const spill = scratch_.data() + first;  // this range's own: subtrees run in parallel
     uint32_t left = 0, right = 0;
     for (uint32_t i = 0; i < count; ++i) {
       const uint32_t p = range[i];
-      if (bin_of(centroid_[p][best_axis], lo[best_axis], scale[best_axis]) <= best_bin) range[left++] = p;
+      if (grid.bin(centroid_[p], plane.axis) <= plane.bin) range[left++] = p;
       else spill[right++] = p;
     }
     std::copy(spill, spill + right, range + left);
@@ -378,19 +589,12 @@ class Builder {
     n.child[k] = code;
   }
 
-  // Places binary leaf b's block (filled later, in run()); returns its code.
-  template <class Out> uint32_t emit_leaf(Out& out, const BinaryNode& b) {
-    sah_ += b.box.half_area() / root_area_;
-    out.leaves.emplace_back();
-    leaf_range_.push_back({b.first, b.count});
-    return kLeafBit | uint32_t(out.leaves.size() - 1);
-  }
-
-  // Emits the wide node for binary interior node b; returns its index.
-  template <class Out> uint32_t emit(Out& out, uint32_t b, std::size_t depth, std::size_t& max_depth) {
-    using Node = typename decltype(out.nodes)::value_type;
-    constexpr int kWidth = width_of<Node>;
-    max_depth = std::max(max_depth, depth);
+  // Places the wide node for binary interior node b at `depth` in layout l, depth first (its
+  // kids, opened by largest area, and their codes); returns its index there. With `defer`,
+  // a kid that would be placed at kSplitDepth is listed there instead, as kSubBit | its place
+  // in the list.
+  uint32_t place(Layout& l, uint32_t b, std::size_t depth, std::vector<uint32_t>* defer) const {
+    l.max_depth = std::max(l.max_depth, depth);
     uint32_t kids[kWidth] = {nodes_[b].left, nodes_[b].right};
     // Each kid's area, or -1 for a leaf (never opened).
     const auto area_of = [&](uint32_t kid) { return nodes_[kid].count == 0 ? nodes_[kid].box.half_area() : -1.0; };
@@ -408,15 +612,45 @@ class Builder {
       kids[open] = c.left, areas[open] = area_of(c.left);
       ++n;
     }
-    const uint32_t index = uint32_t(out.nodes.size());
-    out.nodes.push_back(empty_node<Node>());
-    sah_ += nodes_[b].box.half_area() / root_area_;
+    const uint32_t index = uint32_t(l.wide.size());
+    l.wide.push_back({b, uint32_t(n), {}, {}});
+    std::copy(kids, kids + n, l.wide[index].kid);
     for (int k = 0; k < n; ++k) {
-      const BinaryNode& c = nodes_[kids[k]];
-      const uint32_t code = c.count > 0 ? emit_leaf(out, c) : emit(out, kids[k], depth + 1, max_depth);
-      set_child(out.nodes[index], k, c.box, code);
+      uint32_t code;
+      if (nodes_[kids[k]].count > 0) {
+        code = kLeafBit | uint32_t(l.leaf.size());
+        l.leaf.push_back(kids[k]);
+      } else if (defer && depth + 1 == kSplitDepth) {
+        code = kSubBit | uint32_t(defer->size());
+        defer->push_back(kids[k]);
+      } else {
+        code = place(l, kids[k], depth + 1, defer);
+      }
+      l.wide[index].code[k] = code;
     }
     return index;
+  }
+
+  // Numbers top node k and, depth first, everything below it: its leaf blocks in turn, the
+  // top nodes below it, and each subtree layout as one run. The top's codes become final.
+  static void assemble(Layout& top, std::vector<Layout>& sub, uint32_t k, uint32_t& nodes, uint32_t& leaves,
+                       std::vector<uint32_t>& top_index, std::vector<uint32_t>& top_leaf) {
+    top_index[k] = nodes++;
+    for (uint32_t j = 0; j < top.wide[k].n; ++j) {
+      uint32_t& code = top.wide[k].code[j];
+      if (code & kLeafBit) {
+        top_leaf[code & ~kLeafBit] = leaves;
+        code = kLeafBit | leaves++;
+      } else if (code & kSubBit) {
+        Layout& l = sub[code & ~kSubBit];
+        l.node_base = nodes, l.leaf_base = leaves;
+        nodes += uint32_t(l.wide.size()), leaves += uint32_t(l.leaf.size());
+        code = l.node_base;
+      } else {
+        assemble(top, sub, code, nodes, leaves, top_index, top_leaf);
+        code = top_index[code];
+      }
+    }
   }
 };
 
@@ -439,6 +673,7 @@ struct MeshLeaf {
         leaf.triangle[k] = kNoTriangle;
       }
     }
+    for (uint32_t& u : leaf.unused) u = 0;
   }
 };
 
@@ -451,11 +686,13 @@ void box_leaf(BvhItems4& leaf, const uint32_t* items, uint32_t count) {
 Bvh8 build_bvh8(const MeshData& mesh) {
   const std::size_t n = mesh.triangle_count();
   std::vector<Box> prims(n);
-  for (std::size_t i = 0; i < n; ++i)
-    for (int k = 0; k < 3; ++k) {
-      const uint32_t v = mesh.indices[3 * i + k];
-      prims[i].grow(F4{mesh.x[v], mesh.y[v], mesh.z[v], 0.0f});
-    }
+  parallel_for(n, kChunkPrims, [&](std::size_t b, std::size_t e) {
+    for (std::size_t i = b; i < e; ++i)
+      for (int k = 0; k < 3; ++k) {
+        const uint32_t v = mesh.indices[3 * i + k];
+        prims[i].grow(F4{mesh.x[v], mesh.y[v], mesh.z[v], 0.0f});
+      }
+  });
   return Builder(std::move(prims)).run<Bvh8>(MeshLeaf{mesh});
 }
 
@@ -469,10 +706,9 @@ BoxBvh8 build_box_bvh8(const BvhBox* boxes, std::size_t count) {
     return out;
   }
   std::vector<Box> prims(count);
-  for (std::size_t i = 0; i < count; ++i) {
-    prims[i].grow(f4(boxes[i].lo));
-    prims[i].grow(f4(boxes[i].hi));
-  }
+  parallel_for(count, kChunkPrims, [&](std::size_t b, std::size_t e) {
+    for (std::size_t i = b; i < e; ++i) prims[i].grow(f4(boxes[i].lo)), prims[i].grow(f4(boxes[i].hi));
+  });
   return Builder(std::move(prims)).run<BoxBvh8>(box_leaf);
 }
 

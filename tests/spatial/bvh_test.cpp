@@ -171,11 +171,12 @@ template <class B> std::size_t bad_orders(const B& b) {
   return bad;
 }
 
-// The build runs its top nodes' binning in parallel chunks and its subtrees as parallel
-// tasks: the bytes must not depend on the thread count. 70k triangles take both paths (the
-// chunks from 32k primitives, the tasks below 4k); the hashes are those of the serial
-// builder this replaced, so the tree itself is pinned too; the whole bytes (with the child
-// orders) must match across thread counts, and the orders must be what BvhNode8 says.
+// The build runs its top level by level in parallel chunks, its subtrees as parallel tasks
+// and its layout as parallel runs: the bytes must not depend on the thread count. 70k
+// triangles take every path (the top above 4k primitives, the layout's subtrees below wide
+// depth 4); the hashes are those of the serial builder this replaced, so the tree itself is
+// pinned too; the whole bytes (with the child orders) must match across thread counts, and
+// the orders must be what BvhNode8 says.
 TEST(Bvh, SameBytesAtEveryThreadCount) {
   const MeshData mesh = random_mesh(70000, 5, false), clustered = random_mesh(40000, 6, true);
   std::vector<detail::BvhBox> boxes(50000);
@@ -200,7 +201,14 @@ TEST(Bvh, SameBytesAtEveryThreadCount) {
       EXPECT_EQ(h[k], whole[k]) << "tree " << k << ", " << threads << " threads";
     }
     EXPECT_EQ(bad_orders(a) + bad_orders(b) + bad_orders(c), 0u) << threads << " threads";
+    EXPECT_GT(a.stats.max_depth, 4u);  // deep enough for the layout's subtree runs
+    EXPECT_GT(c.stats.max_depth, 4u);
   }
+  // Every byte is written (the nodes and leaf blocks are not zeroed before the fill): the
+  // whole bytes are pinned too, as the builder before the parallel layout wrote them.
+  EXPECT_EQ(whole[0], 16378714262359077675ull);
+  EXPECT_EQ(whole[1], 13077965190553355444ull);
+  EXPECT_EQ(whole[2], 10412547666682142627ull);
   set_thread_count(saved);
 }
 
