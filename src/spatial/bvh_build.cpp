@@ -40,8 +40,7 @@ namespace {
 constexpr int kBins = 32;
 constexpr uint32_t kLeafSize = 4;
 // Subtrees of at most kTaskPrims primitives are built as parallel tasks (R2's 522k
-// triangles make 182); nodes of at least two chunks gather their boxes and bins in parallel
-// chunks of kChunkPrims (16384 measured no different on R2).
+// triangles make 182); the top's levels work in chunks of kChunkPrims.
 constexpr uint32_t kTaskPrims = 4096;
 constexpr uint32_t kChunkPrims = 4096;
 constexpr float kInf = __builtin_inff();
@@ -54,12 +53,13 @@ using I4 = int32_t __attribute__((vector_size(16)));
 
 inline F4 f4(const float p[3]) { return F4{p[0], p[1], p[2], 0.0f}; }
 
-struct Box {
-  F4 lo = {kInf, kInf, kInf, kInf};
-  F4 hi = {-kInf, -kInf, -kInf, -kInf};
+// A box as the builder's large arrays store it (primitives, binary nodes): trivially
+// constructible, so they resize without writing and their parallel fills first-touch them.
+struct Bounds {
+  F4 lo, hi;
   // std::min(lo, b.lo) and std::max(hi, b.hi) lane by lane (the same selects, so the same
   // bits, signed zeros included).
-  void grow(const Box& b) {
+  void grow(const Bounds& b) {
     lo = b.lo < lo ? b.lo : lo;
     hi = hi < b.hi ? b.hi : hi;
   }
@@ -75,10 +75,16 @@ struct Box {
   }
 };
 
+// A box that starts empty, (+inf, -inf): every accumulator.
+struct Box : Bounds {
+  Box() : Bounds{F4{} + kInf, F4{} - kInf} {}
+  Box(const Bounds& b) : Bounds(b) {}
+};
+
 struct BinaryNode {
-  Box box;
-  uint32_t left = 0, right = 0;  // interior
-  uint32_t first = 0, count = 0;  // leaf when count > 0
+  Bounds box;
+  uint32_t left, right;   // interior
+  uint32_t first, count;  // leaf when count > 0
 };
 
 // A node's bins along the three axes.
@@ -207,7 +213,7 @@ Plane best_plane(const Bins& bins, uint32_t count, const Grid& grid) {
 class Builder {
  public:
   // prim[i] is primitive i's box; the leaf writer receives primitive indices.
-  explicit Builder(std::vector<Box> prims) : prim_(std::move(prims)) {
+  explicit Builder(DefaultInitVector<Bounds> prims) : prim_(std::move(prims)) {
     const std::size_t n = prim_.size();
     centroid_.resize(n);
     order_.resize(n);
@@ -231,7 +237,7 @@ class Builder {
     build_tasks(tasks);
     constexpr uint32_t root = 0;
     Out out;
-    const Box& rb = nodes_[root].box;
+    const Bounds& rb = nodes_[root].box;
     out.bounds = aabb_from_min_max({rb.lo[0], rb.lo[1], rb.lo[2]}, {rb.hi[0], rb.hi[1], rb.hi[2]});
     const double root_area = std::max(rb.half_area(), 1e-300);
     // The root is always a wide node, even over a single leaf, so traversal has one shape.
@@ -335,12 +341,12 @@ class Builder {
     uint32_t node_base = 0, leaf_base = 0;  // its first node and leaf block in the output
   };
 
-  std::vector<Box> prim_;
+  DefaultInitVector<Bounds> prim_;
   DefaultInitVector<F4> centroid_;
   DefaultInitVector<uint32_t> order_;
   DefaultInitVector<uint32_t> scratch_;  // a partition's right side (or, at the top, both sides)
   DefaultInitVector<uint8_t> side_;      // at the top: 1 where a primitive goes left
-  std::vector<BinaryNode> nodes_;
+  DefaultInitVector<BinaryNode> nodes_;
 
   void node_boxes(uint32_t first, uint32_t end, Box& box, Box& cbox) const {
     for (uint32_t i = first; i < end; ++i) {
@@ -584,7 +590,7 @@ class Builder {
     return count / 2;
   }
 
-  template <class Node> static void set_child(Node& n, int k, const Box& b, uint32_t code) {
+  template <class Node> static void set_child(Node& n, int k, const Bounds& b, uint32_t code) {
     for (int a = 0; a < 3; ++a) n.bounds[2 * a][k] = b.lo[a], n.bounds[2 * a + 1][k] = b.hi[a];
     n.child[k] = code;
   }
@@ -685,13 +691,16 @@ void box_leaf(BvhItems4& leaf, const uint32_t* items, uint32_t count) {
 
 Bvh8 build_bvh8(const MeshData& mesh) {
   const std::size_t n = mesh.triangle_count();
-  std::vector<Box> prims(n);
+  DefaultInitVector<Bounds> prims(n);
   parallel_for(n, kChunkPrims, [&](std::size_t b, std::size_t e) {
-    for (std::size_t i = b; i < e; ++i)
+    for (std::size_t i = b; i < e; ++i) {
+      Box box;
       for (int k = 0; k < 3; ++k) {
         const uint32_t v = mesh.indices[3 * i + k];
-        prims[i].grow(F4{mesh.x[v], mesh.y[v], mesh.z[v], 0.0f});
+        box.grow(F4{mesh.x[v], mesh.y[v], mesh.z[v], 0.0f});
       }
+      prims[i] = box;
+    }
   });
   return Builder(std::move(prims)).run<Bvh8>(MeshLeaf{mesh});
 }
@@ -705,9 +714,13 @@ BoxBvh8 build_box_bvh8(const BvhBox* boxes, std::size_t count) {
     out.stats.bytes = sizeof(BvhNode8);
     return out;
   }
-  std::vector<Box> prims(count);
+  DefaultInitVector<Bounds> prims(count);
   parallel_for(count, kChunkPrims, [&](std::size_t b, std::size_t e) {
-    for (std::size_t i = b; i < e; ++i) prims[i].grow(f4(boxes[i].lo)), prims[i].grow(f4(boxes[i].hi));
+    for (std::size_t i = b; i < e; ++i) {
+      Box box;
+      box.grow(f4(boxes[i].lo)), box.grow(f4(boxes[i].hi));
+      prims[i] = box;
+    }
   });
   return Builder(std::move(prims)).run<BoxBvh8>(box_leaf);
 }
