@@ -19,7 +19,7 @@
 //   depth-first emission gives (the wide tree follows the binary tree's shape, not where its
 //   nodes were stored);
 // - every node and leaf block written whole, in parallel.
-
+//
 // The SAH cost counts 4-wide leaf blocks, not triangles (a block of 1 to 4 triangles costs
 // one lane test), so a node of at most 4 triangles is always a leaf.
 //
