@@ -17,8 +17,7 @@ void* allocate_large(std::size_t bytes) {
   return p;
 }
 
-void deallocate_large(void* p, std::size_t bytes) noexcept {
-  ::operator delete(p, bytes, std::align_val_t(kHugeBlock));
-}
+// The unsized form: Clang before 17 declares no sized deallocation unless asked to.
+void deallocate_large(void* p, std::size_t) noexcept { ::operator delete(p, std::align_val_t(kHugeBlock)); }
 
 }  // namespace gyro::detail
