@@ -217,7 +217,6 @@ class Builder {
     centroid_.resize(n);
     order_.resize(n);
     scratch_.resize(n);
-    side_.resize(n);
     parallel_for(n, kChunkPrims, [&](std::size_t b, std::size_t e) {
       for (std::size_t i = b; i < e; ++i) {
         centroid_[i] = (prim_[i].lo + prim_[i].hi) * 0.5f;
@@ -343,8 +342,7 @@ class Builder {
   DefaultInitVector<Bounds> prim_;
   DefaultInitVector<F4> centroid_;
   DefaultInitVector<uint32_t> order_;
-  DefaultInitVector<uint32_t> scratch_;  // a partition's right side (or, at the top, both sides)
-  DefaultInitVector<uint8_t> side_;      // at the top: 1 where a primitive goes left
+  DefaultInitVector<uint32_t> scratch_;  // a task partition's right side; at the top, each chunk's both sides
   DefaultInitVector<BinaryNode> nodes_;
 
   void node_boxes(uint32_t first, uint32_t end, Box& box, Box& cbox) const {
