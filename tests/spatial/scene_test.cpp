@@ -298,6 +298,23 @@ void expect_batch_matches(const Columns& c, const std::vector<SceneHit>& expect,
   EXPECT_EQ(bits(c.v[i]), bits(e.v)) << "ray " << i;
 }
 
+// The batch asked for t, model and primitive only (no normals, no barycentrics): the same
+// answers as the full one (the scene then skips the winner's details where it can).
+void expect_bare_batch_matches(const Scene& scene, const std::vector<SceneHit>& expect, const Rays& rays) {
+  const std::size_t n = rays.set.size();
+  Columns c(n);
+  SceneHitsOut out = c.out();
+  out.nx = out.ny = out.nz = out.u = out.v = nullptr;
+  ASSERT_EQ(raycast_closest(scene, rays.view(), n, out), Status::ok);
+  for (std::size_t i = 0; i < n; ++i) {
+    const SceneHit& e = expect[i];
+    ASSERT_EQ(c.model[i], e.model) << "ray " << i;
+    EXPECT_EQ(bits(c.t[i]), bits(e.hit.hit ? e.hit.t : kInf)) << "ray " << i;
+    EXPECT_EQ(c.primitive[i], e.hit.hit ? int32_t(e.primitive) : ray_valid(rays, i) ? -1 : kRayInvalid) << "ray " << i;
+    EXPECT_EQ(c.nx[i], -1.0f) << "ray " << i;  // not written
+  }
+}
+
 class ScopedExecution {
  public:
   ScopedExecution(SimdLevel level, uint32_t threads) {
@@ -347,6 +364,7 @@ void check_raycasts(Scene& scene, const Rays& rays, std::size_t* hit_count) {
         Columns c(n);
         ASSERT_EQ(raycast_closest(scene, rays.view(), n, c.out()), Status::ok);
         for (std::size_t i = 0; i < n; ++i) expect_batch_matches(c, expect, rays, i);
+        expect_bare_batch_matches(scene, expect, rays);
         Columns a(n);
         ASSERT_EQ(raycast_any(scene, rays.view(), n, a.out()), Status::ok);
         if (any_first.empty()) any_first = a.model;
@@ -395,6 +413,7 @@ void expect_batch_equals_octree_walk(TestScene& s, const Rays& rays) {
         Columns c(n);
         ASSERT_EQ(raycast_closest(s.scene, rays.view(), n, c.out()), Status::ok);
         for (std::size_t i = 0; i < n; ++i) expect_batch_matches(c, expect, rays, i);
+        expect_bare_batch_matches(s.scene, expect, rays);
         Columns any(n);
         ASSERT_EQ(raycast_any(s.scene, rays.view(), n, any.out()), Status::ok);
         if (any_first.empty()) any_first = any.model;
