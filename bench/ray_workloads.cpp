@@ -409,7 +409,9 @@ GyroRuns run_gyro_spheres_scene(const Options& o, const testing::SphereSet& sphe
   std::vector<float> t(n);
   std::vector<ModelId> model(n);
   std::vector<int32_t> prim(n);
+  std::vector<float> nx(n), ny(n), nz(n);
   const SceneHitsOut out{t.data(), model.data(), prim.data()};
+  const SceneHitsOut with_normals{t.data(), model.data(), prim.data(), nx.data(), ny.data(), nz.data()};
   for (SimdLevel level : ray_levels(o)) {
     set_simd_level(level);
     for (uint32_t threads : threads_to_run(o)) {
@@ -419,6 +421,14 @@ GyroRuns run_gyro_spheres_scene(const Options& o, const testing::SphereSet& sphe
                                     {"gyro", "closest_hit_scene_bvh", simd_level_name(level), threads, build_ms,
                                      st.bytes, spheres.size(), ms, o.reps},
                                     score(t.data(), n, c.tmax, c.ref), "bytes_per_sphere");
+      // With normals, as Embree's and Bullet's hits always carry them (without, a sphere
+      // winner's details are never computed: the line above).
+      const double normals_ms =
+          median_ms(o.reps, [&] { raycast_closest(scene, view_with_tmax(c.rays, tmax), n, with_normals); });
+      emit(c,
+           {"gyro", "closest_hit_scene_bvh+normals", simd_level_name(level), threads, build_ms, st.bytes,
+            spheres.size(), normals_ms, o.reps},
+           score(t.data(), n, c.tmax, c.ref), "bytes_per_sphere");
       if (!c.any_hit) continue;
       const double any_ms = median_ms(o.reps, [&] { raycast_any(scene, view_with_tmax(c.rays, tmax), n, out); });
       rates.any[threads] = emit(c,

@@ -1,6 +1,7 @@
 // The scalar raycasts and linetests: the lane templates of ray_lanes.hpp with L = float.
 #include "gyro/raycast.hpp"
 
+#include "geometry/raycast_at.hpp"
 #include "geometry/ray_lanes.hpp"
 #include "geometry/shapes_public.hpp"
 
@@ -24,12 +25,22 @@ template <class NormalFn> RaycastResult result(const Ray& ray, float t, NormalFn
 
 }  // namespace
 
-RaycastResult raycast(const Sphere& sphere, const Ray& ray) { return raycast(sphere, ray, 0.0f, kInf); }
-RaycastResult raycast(const Sphere& sphere, const Ray& ray, float tmin, float tmax) {
+RaycastResult detail::raycast_at(const Sphere& sphere, const Ray& ray, float t) {
   const auto r = lanes::lanes_of(ray);
   const auto s = lanes::lanes_of(sphere);
-  const float t = lanes::ray_sphere_t(r, s, tmin, tmax);
   return result(ray, t, [&] { return lanes::ray_sphere_normal(r, s, t); });
+}
+
+RaycastResult detail::raycast_at(const OBB& box, const Ray& ray, float t) {
+  const auto r = lanes::lanes_of(ray);
+  const auto b = lanes::lanes_of(box);
+  return result(ray, t, [&] { return lanes::ray_obb_normal(r, b, t); });
+}
+
+RaycastResult raycast(const Sphere& sphere, const Ray& ray) { return raycast(sphere, ray, 0.0f, kInf); }
+RaycastResult raycast(const Sphere& sphere, const Ray& ray, float tmin, float tmax) {
+  const float t = lanes::ray_sphere_t(lanes::lanes_of(ray), lanes::lanes_of(sphere), tmin, tmax);
+  return detail::raycast_at(sphere, ray, t);
 }
 
 RaycastResult raycast(const AABB& box, const Ray& ray) { return raycast(box, ray, 0.0f, kInf); }
@@ -42,10 +53,8 @@ RaycastResult raycast(const AABB& box, const Ray& ray, float tmin, float tmax) {
 
 RaycastResult raycast(const OBB& box, const Ray& ray) { return raycast(box, ray, 0.0f, kInf); }
 RaycastResult raycast(const OBB& box, const Ray& ray, float tmin, float tmax) {
-  const auto r = lanes::lanes_of(ray);
-  const auto b = lanes::lanes_of(box);
-  const float t = lanes::ray_obb_t(r, b, tmin, tmax);
-  return result(ray, t, [&] { return lanes::ray_obb_normal(r, b, t); });
+  const float t = lanes::ray_obb_t(lanes::lanes_of(ray), lanes::lanes_of(box), tmin, tmax);
+  return detail::raycast_at(box, ray, t);
 }
 
 RaycastResult raycast(const Plane& plane, const Ray& ray) { return raycast(plane, ray, 0.0f, kInf); }

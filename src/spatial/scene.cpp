@@ -24,6 +24,7 @@
 #include "core/id_pool.hpp"
 #include "core/parallel.hpp"
 #include "core/validate.hpp"
+#include "geometry/raycast_at.hpp"
 #include "geometry/shape_checks.hpp"
 #include "gyro/overlap.hpp"
 #include "gyro/raycast.hpp"
@@ -782,10 +783,11 @@ float exact_t(void* ctx, std::size_t k, uint32_t item, float best_t, uint32_t be
   return t;
 }
 
-// Rays [begin, begin + n), n <= kBlock, of a prepared BVH scene into out[0, n). Without
-// `details` (a batch that asked for no normals) a sphere or box winner gets only its t and
-// model: the kernel's t is the scalar raycast's to the bit, and recomputing the hit for its
-// point and normal was a sixth of R1's instructions (valgrind, 20k rays).
+// Rays [begin, begin + n), n <= kBlock, of a prepared BVH scene into out[0, n). A sphere or
+// box winner's t is the scalar raycast's to the bit, so its hit is not solved again: its
+// point and normal come from that t (raycast_at), and without `details` (a batch that
+// asked for no normals) it gets its t and model only. Solving it again was a sixth of R1's
+// instructions (valgrind, 20k rays).
 void trace_block(const Scene::Impl& m, const RaysView& rays, std::size_t begin, std::size_t n, bool any, bool details,
                  SceneHit* out, bool* valid) {
   Block b{&m, &rays, begin, any, {}, {}};
@@ -824,9 +826,11 @@ void trace_block(const Scene::Impl& m, const RaysView& rays, std::size_t begin, 
       const uint32_t slot = m.tree_slots[item];
       if (b.cached_item[k] == item) {
         out[k] = b.cached[k];
-      } else if (!details && m.placed[slot].shape != ModelShape::mesh) {
+      } else if (const Placed& p = m.placed[slot]; p.shape != ModelShape::mesh) {
         out[k] = SceneHit{};
-        out[k].hit.hit = true, out[k].hit.t = best_t[k];
+        if (!details) out[k].hit.hit = true, out[k].hit.t = best_t[k];
+        else out[k].hit = p.shape == ModelShape::sphere ? detail::raycast_at(p.sphere, b.ray(k), best_t[k])
+                                                         : detail::raycast_at(p.box, b.ray(k), best_t[k]);
         out[k].model = id_of(m.pool.id_at(slot));
       } else {
         out[k] = b.walker(k).hit_of(slot, b.tmax(k));
