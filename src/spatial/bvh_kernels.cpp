@@ -124,7 +124,7 @@ struct Walk {
   Oct o[3], inv[3], tmin8;
   Quad tmin4, tmax4;
   LeafRay leaf;
-  int near_row[3], far_row[3];
+  std::ptrdiff_t near_at[3], far_at[3];  // the slab rows' offsets in BvhNode8::bounds, in floats
   unsigned oct;
   float best_t, limit;
   uint32_t best_id;
@@ -143,7 +143,7 @@ inline void start(const Bvh8& bvh, Walk& w, std::size_t ray, const float o[3], c
   w.oct = order::octant(inv);
   for (int a = 0; a < 3; ++a) {
     const int neg = int(std::bit_cast<uint32_t>(inv[a]) >> 31);
-    w.near_row[a] = 2 * a + neg, w.far_row[a] = 2 * a + 1 - neg;
+    w.near_at[a] = 8 * (2 * a + neg), w.far_at[a] = 8 * (2 * a + 1 - neg);
     w.o[a] = Oct(o[a]), w.inv[a] = Oct(inv[a]);
   }
   w.tmin8 = Oct(tmin), w.tmin4 = Quad(tmin), w.tmax4 = Quad(tmax);
@@ -179,9 +179,9 @@ template <bool AnyHit, bool Turns> inline bool step(const BvhRaycastArgs& a, Wal
     }
   } else {
     const BvhNode8& node = bvh.nodes[e.code];
-    const auto slab = [&](int row, int axis) { return (load<Oct>(node.bounds[row]) - w.o[axis]) * w.inv[axis]; };
-    const int* nr = w.near_row;
-    const int* fr = w.far_row;
+    const auto slab = [&](std::ptrdiff_t at, int axis) { return (load<Oct>(node.bounds[0] + at) - w.o[axis]) * w.inv[axis]; };
+    const std::ptrdiff_t* nr = w.near_at;
+    const std::ptrdiff_t* fr = w.far_at;
     const Oct tn = max(slab(nr[0], 0), max(slab(nr[1], 1), max(slab(nr[2], 2), w.tmin8)));
     const Oct tf = min(slab(fr[0], 0), min(slab(fr[1], 1), min(slab(fr[2], 2), Oct(w.limit))));
     const unsigned mask = lane_bits(tn <= tf + abs(tf) * Oct(kSlabSlack));

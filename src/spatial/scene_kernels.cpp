@@ -67,7 +67,7 @@ struct Walk {
   RayL<Quad> ray4;
   RayDd<Quad> dd4;
   Quad tmin4, tmax4;
-  int near_row[3], far_row[3];
+  std::ptrdiff_t near_at[3], far_at[3];  // the slab rows' offsets in BvhNode8::bounds, in floats
   unsigned oct;
   float tmax, best_t, limit;
   uint32_t best_key, best_item;
@@ -118,7 +118,7 @@ template <bool OnStack, bool Fetch> inline void start(const SceneRaycastArgs& a,
     // plane costs a subtraction and a product (scene.cpp's header: a rounding of the origin
     // is far inside the pads).
     const float sp = signed_pad(pad, neg);
-    w.near_row[k] = 2 * k + neg, w.far_row[k] = 2 * k + 1 - neg;
+    w.near_at[k] = 8 * (2 * k + neg), w.far_at[k] = 8 * (2 * k + 1 - neg);
     w.oct |= unsigned(neg) << k;
     w.o_near[k] = Oct(o[k] + sp), w.o_far[k] = Oct(o[k] - sp);
     w.inv[k] = Oct(inv);
@@ -200,8 +200,8 @@ inline unsigned entered(const Walk& w, const BvhNode8& node, Oct& tn) {
   tn = w.tmin8;
   Oct tf = Oct(w.limit);
   for (int k = 0; k < 3; ++k) {  // the scalar walk's order: x, y, z, each slab value first
-    const Oct t0 = (load<Oct>(node.bounds[w.near_row[k]]) - w.o_near[k]) * w.inv[k];
-    const Oct t1 = (load<Oct>(node.bounds[w.far_row[k]]) - w.o_far[k]) * w.inv[k];
+    const Oct t0 = (load<Oct>(node.bounds[0] + w.near_at[k]) - w.o_near[k]) * w.inv[k];
+    const Oct t1 = (load<Oct>(node.bounds[0] + w.far_at[k]) - w.o_far[k]) * w.inv[k];
     tn = max(t0, tn);  // t0 > tn ? t0 : tn (lanes.hpp), one instruction on x86
     tf = min(t1, tf);
   }
