@@ -244,7 +244,8 @@ SceneHit raycast_any(const Scene& scene, const Ray& ray, float tmin = 0.0f, floa
 /// Per-ray results of the batch raycasts: t and model are required, the rest optional
 /// (null to skip; the normal all three or none, u and v both or none). A miss writes
 /// t = +inf, primitive = -1, model = null and zeros; an invalid ray (see raycast()) the same
-/// but primitive = kRayInvalid (gyro/triangle_mesh.hpp).
+/// but primitive = kRayInvalid (gyro/triangle_mesh.hpp). What is skipped is not computed:
+/// without normals a sphere or box hit costs its t alone.
 struct SceneHitsOut {
   float* t = nullptr;            ///< hit t (units of |direction|), +inf on a miss
   ModelId* model = nullptr;      ///< the model hit, null on a miss
