@@ -313,6 +313,17 @@ void expect_bare_batch_matches(const Scene& scene, const std::vector<SceneHit>& 
     EXPECT_EQ(c.primitive[i], e.hit.hit ? int32_t(e.primitive) : ray_valid(rays, i) ? -1 : kRayInvalid) << "ray " << i;
     EXPECT_EQ(c.nx[i], -1.0f) << "ray " << i;  // not written
   }
+  // Any hit: the bare batch names the same models at the same t as the full one.
+  Columns full(n), bare(n);
+  SceneHitsOut bare_out = bare.out();
+  bare_out.nx = bare_out.ny = bare_out.nz = bare_out.u = bare_out.v = nullptr;
+  ASSERT_EQ(raycast_any(scene, rays.view(), n, full.out()), Status::ok);
+  ASSERT_EQ(raycast_any(scene, rays.view(), n, bare_out), Status::ok);
+  for (std::size_t i = 0; i < n; ++i) {
+    ASSERT_EQ(bare.model[i], full.model[i]) << "ray " << i;
+    EXPECT_EQ(bits(bare.t[i]), bits(full.t[i])) << "ray " << i;
+    EXPECT_EQ(bare.primitive[i], full.primitive[i]) << "ray " << i;
+  }
 }
 
 class ScopedExecution {
