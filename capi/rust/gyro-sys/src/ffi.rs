@@ -442,7 +442,8 @@ pub struct gyro_model_def {
 
 /// Per-ray scene results: t and model required, the rest optional (NULL to skip; normal
 /// all three or none, u and v both or none). primitive: the triangle for mesh models, 0 for
-/// other shapes, -1 for a miss, GYRO_RAY_INVALID for a ray that cannot be answered.
+/// other shapes, -1 for a miss, GYRO_RAY_INVALID for a ray that cannot be answered. What is
+/// skipped is not computed: without normals a sphere or box hit costs its t alone.
 #[repr(C)]
 #[derive(Clone, Copy, Debug)]
 pub struct gyro_scene_hit_soa {
