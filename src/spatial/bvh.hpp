@@ -54,6 +54,13 @@ struct alignas(64) BvhLeaf4 {
   uint32_t unused[8];  ///< to the cache line, zeroed so the bytes are defined
 };
 
+/// A row of a node's bounds by its offset in bytes (sizeof(float[8]) * (2 * axis + side)):
+/// the ray kernels keep a ray's near and far rows as offsets, so a row's load is one add
+/// (an index into bounds[0] past its eight floats would be out of its bounds).
+inline const float* bounds_row(const BvhNode8& node, std::ptrdiff_t offset) {
+  return reinterpret_cast<const float*>(reinterpret_cast<const char*>(node.bounds) + offset);
+}
+
 // Trivial, so a build's resize() writes nothing and its parallel fill, which writes every
 // byte of every node and leaf block (padding included: there is none), first-touches them.
 static_assert(std::is_trivially_default_constructible_v<BvhNode8> && sizeof(BvhNode8) == 256);

@@ -124,7 +124,7 @@ struct Walk {
   Oct o[3], inv[3], tmin8;
   Quad tmin4, tmax4;
   LeafRay leaf;
-  std::ptrdiff_t near_at[3], far_at[3];  // the slab rows' offsets in BvhNode8::bounds, in floats
+  std::ptrdiff_t near_at[3], far_at[3];  // the slab rows' offsets in BvhNode8::bounds, in bytes (bounds_row)
   unsigned oct;
   float best_t, limit;
   uint32_t best_id;
@@ -143,7 +143,8 @@ inline void start(const Bvh8& bvh, Walk& w, std::size_t ray, const float o[3], c
   w.oct = order::octant(inv);
   for (int a = 0; a < 3; ++a) {
     const int neg = int(std::bit_cast<uint32_t>(inv[a]) >> 31);
-    w.near_at[a] = 8 * (2 * a + neg), w.far_at[a] = 8 * (2 * a + 1 - neg);
+    constexpr std::ptrdiff_t row = sizeof(BvhNode8::bounds[0]);
+    w.near_at[a] = row * (2 * a + neg), w.far_at[a] = row * (2 * a + 1 - neg);
     w.o[a] = Oct(o[a]), w.inv[a] = Oct(inv[a]);
   }
   w.tmin8 = Oct(tmin), w.tmin4 = Quad(tmin), w.tmax4 = Quad(tmax);
@@ -179,7 +180,7 @@ template <bool AnyHit, bool Turns> inline bool step(const BvhRaycastArgs& a, Wal
     }
   } else {
     const BvhNode8& node = bvh.nodes[e.code];
-    const auto slab = [&](std::ptrdiff_t at, int axis) { return (load<Oct>(node.bounds[0] + at) - w.o[axis]) * w.inv[axis]; };
+    const auto slab = [&](std::ptrdiff_t at, int axis) { return (load<Oct>(detail::bounds_row(node, at)) - w.o[axis]) * w.inv[axis]; };
     const std::ptrdiff_t* nr = w.near_at;
     const std::ptrdiff_t* fr = w.far_at;
     const Oct tn = max(slab(nr[0], 0), max(slab(nr[1], 1), max(slab(nr[2], 2), w.tmin8)));

@@ -56,6 +56,7 @@ constexpr uint32_t kNone = 0xFFFFFFFFu;
 constexpr std::size_t kStackSize = 7 * detail::kBvhMaxDepth + 8 + order::kOverhang;
 
 constexpr int kInFlight = 8;
+constexpr std::ptrdiff_t kRowBytes = sizeof(BvhNode8::bounds[0]);
 
 struct Entry {
   uint32_t code;
@@ -67,7 +68,7 @@ struct Walk {
   RayL<Quad> ray4;
   RayDd<Quad> dd4;
   Quad tmin4, tmax4;
-  std::ptrdiff_t near_at[3], far_at[3];  // the slab rows' offsets in BvhNode8::bounds, in floats
+  std::ptrdiff_t near_at[3], far_at[3];  // the slab rows' offsets in BvhNode8::bounds, in bytes (bounds_row)
   unsigned oct;
   float tmax, best_t, limit;
   uint32_t best_key, best_item;
@@ -118,7 +119,7 @@ template <bool OnStack, bool Fetch> inline void start(const SceneRaycastArgs& a,
     // plane costs a subtraction and a product (scene.cpp's header: a rounding of the origin
     // is far inside the pads).
     const float sp = signed_pad(pad, neg);
-    w.near_at[k] = 8 * (2 * k + neg), w.far_at[k] = 8 * (2 * k + 1 - neg);
+    w.near_at[k] = kRowBytes * (2 * k + neg), w.far_at[k] = kRowBytes * (2 * k + 1 - neg);
     w.oct |= unsigned(neg) << k;
     w.o_near[k] = Oct(o[k] + sp), w.o_far[k] = Oct(o[k] - sp);
     w.inv[k] = Oct(inv);
@@ -200,8 +201,8 @@ inline unsigned entered(const Walk& w, const BvhNode8& node, Oct& tn) {
   tn = w.tmin8;
   Oct tf = Oct(w.limit);
   for (int k = 0; k < 3; ++k) {  // the scalar walk's order: x, y, z, each slab value first
-    const Oct t0 = (load<Oct>(node.bounds[0] + w.near_at[k]) - w.o_near[k]) * w.inv[k];
-    const Oct t1 = (load<Oct>(node.bounds[0] + w.far_at[k]) - w.o_far[k]) * w.inv[k];
+    const Oct t0 = (load<Oct>(detail::bounds_row(node, w.near_at[k])) - w.o_near[k]) * w.inv[k];
+    const Oct t1 = (load<Oct>(detail::bounds_row(node, w.far_at[k])) - w.o_far[k]) * w.inv[k];
     tn = max(t0, tn);  // t0 > tn ? t0 : tn (lanes.hpp), one instruction on x86
     tf = min(t1, tf);
   }
