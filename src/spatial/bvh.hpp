@@ -54,9 +54,13 @@ struct alignas(64) BvhLeaf4 {
   uint32_t unused[8];  ///< to the cache line, zeroed so the bytes are defined
 };
 
-/// A row of a node's bounds by its offset in bytes (sizeof(float[8]) * (2 * axis + side)):
-/// the ray kernels keep a ray's near and far rows as offsets, so a row's load is one add
-/// (an index into bounds[0] past its eight floats would be out of its bounds).
+/// The offset in bytes of bounds row 2 * axis + side (side 0: the minima, 1: the maxima):
+/// the ray kernels keep a ray's near and far rows as offsets, so a row's load is one add.
+inline constexpr std::ptrdiff_t bounds_offset(int axis, int side) {
+  return std::ptrdiff_t(sizeof(BvhNode8::bounds[0])) * (2 * axis + side);
+}
+/// The row at a bounds_offset() (through the node's bytes: an index into bounds[0] past its
+/// eight floats would be out of that array's bounds).
 inline const float* bounds_row(const BvhNode8& node, std::ptrdiff_t offset) {
   return reinterpret_cast<const float*>(reinterpret_cast<const char*>(node.bounds) + offset);
 }

@@ -143,8 +143,7 @@ inline void start(const Bvh8& bvh, Walk& w, std::size_t ray, const float o[3], c
   w.oct = order::octant(inv);
   for (int a = 0; a < 3; ++a) {
     const int neg = int(std::bit_cast<uint32_t>(inv[a]) >> 31);
-    constexpr std::ptrdiff_t row = sizeof(BvhNode8::bounds[0]);
-    w.near_at[a] = row * (2 * a + neg), w.far_at[a] = row * (2 * a + 1 - neg);
+    w.near_at[a] = detail::bounds_offset(a, neg), w.far_at[a] = detail::bounds_offset(a, 1 - neg);
     w.o[a] = Oct(o[a]), w.inv[a] = Oct(inv[a]);
   }
   w.tmin8 = Oct(tmin), w.tmin4 = Quad(tmin), w.tmax4 = Quad(tmax);

@@ -56,7 +56,6 @@ constexpr uint32_t kNone = 0xFFFFFFFFu;
 constexpr std::size_t kStackSize = 7 * detail::kBvhMaxDepth + 8 + order::kOverhang;
 
 constexpr int kInFlight = 8;
-constexpr std::ptrdiff_t kRowBytes = sizeof(BvhNode8::bounds[0]);
 
 struct Entry {
   uint32_t code;
@@ -119,7 +118,7 @@ template <bool OnStack, bool Fetch> inline void start(const SceneRaycastArgs& a,
     // plane costs a subtraction and a product (scene.cpp's header: a rounding of the origin
     // is far inside the pads).
     const float sp = signed_pad(pad, neg);
-    w.near_at[k] = kRowBytes * (2 * k + neg), w.far_at[k] = kRowBytes * (2 * k + 1 - neg);
+    w.near_at[k] = detail::bounds_offset(k, neg), w.far_at[k] = detail::bounds_offset(k, 1 - neg);
     w.oct |= unsigned(neg) << k;
     w.o_near[k] = Oct(o[k] + sp), w.o_far[k] = Oct(o[k] - sp);
     w.inv[k] = Oct(inv);
