@@ -385,56 +385,72 @@ GyroRates run_gyro_spheres_subsample(const Options& o, const testing::SphereSet&
   return rates;
 }
 
-// R1 through gyro's scene: one sphere model per R1 sphere under the scene's BVH, every ray.
+// R1 through gyro's scene: one sphere model per R1 sphere, every ray; under the scene's BVH
+// (the default) and under the Cookbook's octree (SceneAccel::octree, its default OctreeDef),
+// whose rays go through the same kernel, so the two lines compare the trees' shapes. The
+// rates returned are the BVH's.
 GyroRuns run_gyro_spheres_scene(const Options& o, const testing::SphereSet& spheres, const RayCase& c) {
   GyroRuns rates;
-  const auto start = std::chrono::steady_clock::now();
-  Scene scene;
-  for (std::size_t i = 0; i < spheres.size(); ++i) {
-    ModelDef d;
-    d.shape = ModelShape::sphere;
-    d.radius = spheres.r[i];
-    d.transform.position = {spheres.cx[i], spheres.cy[i], spheres.cz[i]};
-    ModelId id;
-    if (scene.add_model(d, &id) != Status::ok) {
-      std::printf("# gyro scene: add_model failed (%s)\n", last_error());
-      return rates;
+  for (const SceneAccel accel : {SceneAccel::bvh, SceneAccel::octree}) {
+    const bool bvh = accel == SceneAccel::bvh;
+    const std::string tree = bvh ? "scene_bvh" : "scene_octree";
+    const auto start = std::chrono::steady_clock::now();
+    SceneSettings settings;
+    settings.accel = accel;
+    Scene scene(settings);
+    for (std::size_t i = 0; i < spheres.size(); ++i) {
+      ModelDef d;
+      d.shape = ModelShape::sphere;
+      d.radius = spheres.r[i];
+      d.transform.position = {spheres.cx[i], spheres.cy[i], spheres.cz[i]};
+      ModelId id;
+      if (scene.add_model(d, &id) != Status::ok) {
+        std::printf("# gyro scene: add_model failed (%s)\n", last_error());
+        return rates;
+      }
     }
-  }
-  scene.prepare();
-  const double build_ms = ms_since(start);
-  const SceneStats st = scene.stats();
-  const std::size_t n = c.rays.size();
-  const std::vector<float> tmax = tmax_column(c, n);
-  std::vector<float> t(n);
-  std::vector<ModelId> model(n);
-  std::vector<int32_t> prim(n);
-  std::vector<float> nx(n), ny(n), nz(n);
-  const SceneHitsOut out{t.data(), model.data(), prim.data()};
-  const SceneHitsOut with_normals{t.data(), model.data(), prim.data(), nx.data(), ny.data(), nz.data()};
-  for (SimdLevel level : ray_levels(o)) {
-    set_simd_level(level);
-    for (uint32_t threads : threads_to_run(o)) {
-      set_thread_count(threads);
-      const double ms = median_ms(o.reps, [&] { raycast_closest(scene, view_with_tmax(c.rays, tmax), n, out); });
-      rates.closest[threads] = emit(c,
-                                    {"gyro", "closest_hit_scene_bvh", simd_level_name(level), threads, build_ms,
-                                     st.bytes, spheres.size(), ms, o.reps},
-                                    score(t.data(), n, c.tmax, c.ref), "bytes_per_sphere");
-      // With normals, as Embree's and Bullet's hits always carry them (without, a sphere
-      // winner's details are never computed: the line above).
-      const double normals_ms =
-          median_ms(o.reps, [&] { raycast_closest(scene, view_with_tmax(c.rays, tmax), n, with_normals); });
-      emit(c,
-           {"gyro", "closest_hit_scene_bvh+normals", simd_level_name(level), threads, build_ms, st.bytes,
-            spheres.size(), normals_ms, o.reps},
-           score(t.data(), n, c.tmax, c.ref), "bytes_per_sphere");
-      if (!c.any_hit) continue;
-      const double any_ms = median_ms(o.reps, [&] { raycast_any(scene, view_with_tmax(c.rays, tmax), n, out); });
-      rates.any[threads] = emit(c,
-                                {"gyro", "any_hit_scene_bvh", simd_level_name(level), threads, build_ms, st.bytes,
-                                 spheres.size(), any_ms, o.reps},
-                                score(t.data(), n, c.tmax, c.ref, true), "bytes_per_sphere");
+    scene.prepare();
+    const double build_ms = ms_since(start);
+    const SceneStats st = scene.stats();
+    if (!bvh)
+      std::printf("# gyro octree: %zu nodes, %zu leaves, %zu references to %zu spheres, depth %zu\n", st.nodes,
+                  st.leaves, st.references, st.tree_models, st.max_depth);
+    const std::size_t n = c.rays.size();
+    const std::vector<float> tmax = tmax_column(c, n);
+    std::vector<float> t(n);
+    std::vector<ModelId> model(n);
+    std::vector<int32_t> prim(n);
+    std::vector<float> nx(n), ny(n), nz(n);
+    const SceneHitsOut out{t.data(), model.data(), prim.data()};
+    const SceneHitsOut with_normals{t.data(), model.data(), prim.data(), nx.data(), ny.data(), nz.data()};
+    for (SimdLevel level : ray_levels(o)) {
+      set_simd_level(level);
+      for (uint32_t threads : threads_to_run(o)) {
+        set_thread_count(threads);
+        const double ms = median_ms(o.reps, [&] { raycast_closest(scene, view_with_tmax(c.rays, tmax), n, out); });
+        const double rate = emit(c,
+                                 {"gyro", "closest_hit_" + tree, simd_level_name(level), threads, build_ms, st.bytes,
+                                  spheres.size(), ms, o.reps},
+                                 score(t.data(), n, c.tmax, c.ref), "bytes_per_sphere");
+        if (bvh) rates.closest[threads] = rate;
+        // With normals, as Embree's and Bullet's hits always carry them (without, a sphere
+        // winner's details are never computed: the line above).
+        if (bvh) {
+          const double normals_ms =
+              median_ms(o.reps, [&] { raycast_closest(scene, view_with_tmax(c.rays, tmax), n, with_normals); });
+          emit(c,
+               {"gyro", "closest_hit_" + tree + "+normals", simd_level_name(level), threads, build_ms, st.bytes,
+                spheres.size(), normals_ms, o.reps},
+               score(t.data(), n, c.tmax, c.ref), "bytes_per_sphere");
+        }
+        if (!c.any_hit) continue;
+        const double any_ms = median_ms(o.reps, [&] { raycast_any(scene, view_with_tmax(c.rays, tmax), n, out); });
+        const double any_rate = emit(c,
+                                     {"gyro", "any_hit_" + tree, simd_level_name(level), threads, build_ms, st.bytes,
+                                      spheres.size(), any_ms, o.reps},
+                                     score(t.data(), n, c.tmax, c.ref, true), "bytes_per_sphere");
+        if (bvh) rates.any[threads] = any_rate;
+      }
     }
   }
   set_simd_level(SimdLevel::automatic);

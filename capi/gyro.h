@@ -373,7 +373,7 @@ enum { GYRO_MODEL_SPHERE = 0, GYRO_MODEL_BOX = 1, GYRO_MODEL_MESH = 2, GYRO_MODE
 typedef uint32_t gyro_scene_accel;
 enum { GYRO_SCENE_BVH = 0, GYRO_SCENE_OCTREE = 1 };
 
-/** Whether ray batches through a BVH scene prefetch each next visit's cache lines (ABI 1.7).
+/** Whether a scene's ray batches (either structure) prefetch each next visit's cache lines (ABI 1.7).
  *  Speed only, never a result. AUTO (the default): when the tree exceeds 8 MiB, where it paid
  *  on the machine the default was measured on (1 MiB L2 per core, 32 MiB L3). */
 typedef uint32_t gyro_ray_prefetch;

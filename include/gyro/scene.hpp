@@ -129,15 +129,18 @@ struct ModelInfo {
 /// Which top-level structure a scene builds over its models.
 enum class SceneAccel : uint32_t {
   /// Binned-SAH 8-wide BVH over the models' bounds. The default: on 1000 to 4000 models it
-  /// builds about as fast and answers rays about 2 to 5 times and frustum queries 1.7 to 4
-  /// times faster than the octree (SceneBench in tests/spatial/scene_test.cpp).
+  /// builds 1.5 to 2.4 times and answers closest-hit rays 1.8 to 6 times, any-hit rays 1.5
+  /// to 3 times and frustum queries 1.7 to 5 times faster than the octree (SceneBench in
+  /// tests/spatial/scene_test.cpp); on R1's 10^4 spheres, rays 1.7 times (gyro-bench).
   bvh = 0,
   /// The Cookbook's octree (gyro/octree.hpp) over the models' bounds: a model sits in every
-  /// leaf it overlaps, so large or clustered models are stored many times.
+  /// leaf it overlaps, so large or clustered models are stored many times. Rays walk it in
+  /// the BVH's node form, through the same kernel, so the two modes differ only in the
+  /// tree's shape; the queries walk the octree itself.
   octree = 1,
 };
 
-/// Whether ray batches through a scene's BVH (closest and any hit) prefetch each next
+/// Whether ray batches through a scene's tree (closest and any hit) prefetch each next
 /// visit's cache lines. It changes speed only, never a result. Prefetching pays once the tree outgrows the
 /// caches and costs instructions before: on the machine the defaults were measured on (1 MiB
 /// L2 per core, 32 MiB L3), without it up to about 8 MiB of tree (3 * 10^5 spheres), with it
@@ -152,7 +155,7 @@ enum class RayPrefetch : uint32_t {
 struct SceneSettings {
   SceneAccel accel = SceneAccel::bvh;  ///< the structure queries walk
   OctreeDef octree;                    ///< used when accel == octree
-  RayPrefetch ray_prefetch = RayPrefetch::automatic;  ///< used when accel == bvh
+  RayPrefetch ray_prefetch = RayPrefetch::automatic;  ///< for rays in either mode
 };
 
 /// The shape of a scene's current structure.

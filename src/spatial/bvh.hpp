@@ -96,6 +96,12 @@ struct BvhBox {
   float hi[3];
 };
 
+/// A node whose slots are all empty: bounds (+inf, -inf), which no slab test enters.
+BvhNode8 empty_node8();
+/// Sets node.order from its children's bounds (the builder's rule: for each octant, the slots
+/// by their centres along its diagonal, ties in slot order, empty slots last).
+void set_child_orders(BvhNode8& node);
+
 /// Builds the BVH of a valid mesh (binned SAH over triangle centroids, then collapsed from
 /// binary to 8-wide). Deterministic: depends only on the mesh's values.
 Bvh8 build_bvh8(const MeshData& mesh);

@@ -686,6 +686,9 @@ void box_leaf(BvhItems4& leaf, const uint32_t* items, uint32_t count) {
 
 }  // namespace
 
+BvhNode8 empty_node8() { return empty_node<BvhNode8>(); }
+void set_child_orders(BvhNode8& node) { set_orders(node); }
+
 Bvh8 build_bvh8(const MeshData& mesh) {
   const std::size_t n = mesh.triangle_count();
   DefaultInitVector<Bounds> prims(n);

@@ -29,6 +29,7 @@
 #include "gyro/overlap.hpp"
 #include "gyro/raycast.hpp"
 #include "spatial/bvh.hpp"
+#include "spatial/octree_bvh.hpp"
 #include "spatial/scene_rays.hpp"
 
 #include <algorithm>
@@ -48,7 +49,6 @@ constexpr std::size_t kRayChunk = 64;
 constexpr float kBoxPad = 0x1p-16f;
 constexpr float kRayPad = 0x1p-17f;
 constexpr float kSlabSlack = 0x1p-18f;
-constexpr float kBestSlack = 0x1p-16f;
 constexpr float kTinyPad = 1e-30f;
 constexpr std::size_t kFetchBytes = std::size_t(8) << 20;  // RayPrefetch::automatic (gyro/scene.hpp)
 constexpr uint32_t kNoIndex = 0xFFFFFFFFu;
@@ -289,28 +289,31 @@ struct Scene::Impl {
     ray_boxes.clear();
     rays_large = false;
     octree.clear();
-    if (built == SceneAccel::bvh) {
-      std::vector<detail::BvhBox> boxes(tree_slots.size());
-      for (std::size_t k = 0; k < tree_slots.size(); ++k) {
-        const Placed& p = placed[tree_slots[k]];
-        boxes[k] = {{p.lo[0], p.lo[1], p.lo[2]}, {p.hi[0], p.hi[1], p.hi[2]}};
-      }
-      bvh = detail::build_box_bvh8(boxes.data(), boxes.size());
-      build_ray_leaves();
-      // Rays take turns at every size; prefetching the next visit costs more than it saves
-      // up to about 3 * 10^5 spheres at R1's density (R1's closest-hit rays spread over the
-      // scene, one thread; 8 MB of tree: 1.5-1.6 Mrays/s either way), at 10^5 3.1-3.4
-      // Mrays/s without against 2.4 with, at 10^6 0.8-0.9 against 1.1.
-      const std::size_t bytes = bvh.nodes.size() * sizeof(detail::BvhNode8) +
-                                ray_leaves.size() * sizeof(detail::SceneLeaf4) + ray_boxes.size() * sizeof(detail::SceneBoxes4);
-      rays_large = bytes > kFetchBytes;
-    } else {
-      std::vector<AABB> boxes(tree_slots.size());
-      std::vector<uint32_t> ids(tree_slots.size());
-      for (std::size_t k = 0; k < tree_slots.size(); ++k) boxes[k] = placed[tree_slots[k]].bounds, ids[k] = uint32_t(k);
-      // The boxes were checked finite when placed and the def when configured.
-      if (octree.build(boxes.data(), ids.data(), boxes.size(), settings.octree) != Status::ok) octree.clear();
+    std::vector<detail::BvhBox> boxes(tree_slots.size());
+    for (std::size_t k = 0; k < tree_slots.size(); ++k) {
+      const Placed& p = placed[tree_slots[k]];
+      boxes[k] = {{p.lo[0], p.lo[1], p.lo[2]}, {p.hi[0], p.hi[1], p.hi[2]}};
     }
+    if (built == SceneAccel::bvh) {
+      bvh = detail::build_box_bvh8(boxes.data(), boxes.size());
+    } else {
+      std::vector<AABB> bounds(tree_slots.size());
+      std::vector<uint32_t> ids(tree_slots.size());
+      for (std::size_t k = 0; k < tree_slots.size(); ++k) bounds[k] = placed[tree_slots[k]].bounds, ids[k] = uint32_t(k);
+      // The boxes were checked finite when placed and the def when configured.
+      if (octree.build(bounds.data(), ids.data(), bounds.size(), settings.octree) != Status::ok) octree.clear();
+      // The rays walk the octree in the BVH's node form, through the same kernel
+      // (octree_bvh.hpp); the queries walk the octree itself.
+      bvh = detail::octree_bvh8(octree, boxes.data());
+    }
+    build_ray_leaves();
+    // Rays take turns at every size; prefetching the next visit costs more than it saves
+    // up to about 3 * 10^5 spheres at R1's density (R1's closest-hit rays spread over the
+    // scene, one thread; 8 MB of tree: 1.5-1.6 Mrays/s either way), at 10^5 3.1-3.4
+    // Mrays/s without against 2.4 with, at 10^6 0.8-0.9 against 1.1.
+    const std::size_t bytes = bvh.nodes.size() * sizeof(detail::BvhNode8) +
+                              ray_leaves.size() * sizeof(detail::SceneLeaf4) + ray_boxes.size() * sizeof(detail::SceneBoxes4);
+    rays_large = bytes > kFetchBytes;
   }
 
   // Each leaf's spheres and boxes as lanes for the ray kernel; meshes go to the exact test.
@@ -549,14 +552,14 @@ SceneStats Scene::stats() const {
   s.models = m.pool.size();
   s.tree_models = m.tree_slots.size();
   s.planes = m.plane_slots.size();
+  // Both modes' rays walk m.bvh (under the octree, its node form: octree_bvh.hpp).
+  s.bytes = m.bvh.stats.bytes + m.ray_leaves.size() * sizeof(detail::SceneLeaf4) + m.ray_boxes.size() * sizeof(detail::SceneBoxes4);
   if (m.built == SceneAccel::bvh) {
     s.nodes = m.bvh.stats.nodes, s.leaves = m.bvh.stats.leaves, s.max_depth = m.bvh.stats.max_depth;
     s.references = m.tree_slots.size();
-    s.bytes = m.bvh.stats.bytes + m.ray_leaves.size() * sizeof(detail::SceneLeaf4) +
-              m.ray_boxes.size() * sizeof(detail::SceneBoxes4);
   } else {
     const OctreeStats o = m.octree.stats();
-    s.nodes = o.nodes, s.leaves = o.leaves, s.max_depth = o.max_depth, s.references = o.references, s.bytes = o.bytes;
+    s.nodes = o.nodes, s.leaves = o.leaves, s.max_depth = o.max_depth, s.references = o.references, s.bytes += o.bytes;
   }
   s.bytes += m.placed.size() * sizeof(Placed) + m.defs.size() * sizeof(ModelDef);
   return s;
@@ -564,20 +567,18 @@ SceneStats Scene::stats() const {
 
 // ------------------------------------------------------------------------ raycasts
 //
-// Under the BVH, rays go in blocks: the planes here (scalar), the tree in the per-level
-// kernel of scene_kernels.cpp (spheres and boxes four at a time in lanes, meshes through
-// exact_t below, eight rays taking turns in a large tree), then the winner's point, normal,
-// triangle and barycentrics here, computed once per ray. Under the octree, RayWalk walks it one ray at a
-// time. Both give the brute-force loop's bits (the header comment).
+// Rays go in blocks: the planes here (scalar), the tree in the per-level kernel of
+// scene_kernels.cpp (spheres and boxes four at a time in lanes, meshes through exact_t
+// below, eight rays taking turns in a large tree), then the winner's point, normal, triangle
+// and barycentrics here, computed once per ray. Under the octree the kernel walks the
+// octree's node form (octree_bvh.hpp): the Cookbook's scalar walk of the octree, one child
+// box and one model at a time, ran R1 at 1.1 Mrays/s, the kernel on the same octree at 4.3
+// (one thread). Both modes give the brute-force loop's bits (the header comment).
 
 namespace {
 
-struct Entry {
-  uint32_t code;
-  float near;
-};
-
-// One ray's walk: the slab test and the running best (closest) or first (any) hit.
+// One ray against the planes and single models: the slab test of a model's box and the
+// running best (closest) or first (any) hit.
 class RayWalk {
  public:
   RayWalk(const Scene::Impl& m, const Ray& ray, float tmin, float tmax, bool any)
@@ -595,14 +596,6 @@ class RayWalk {
 
   // How far a ray widens every box it tests.
   static float pad_of(const Ray& ray) { return kRayPad * max_abs3(ray.origin); }
-
-  // Planes, then the octree (the BVH's rays go through the kernel).
-  SceneHit run() {
-    planes();
-    if (any_ && found()) return best_;
-    if (!m_.tree_slots.empty()) walk_octree();
-    return best_;
-  }
 
   // The planes' best (any hit: the first in id order).
   const SceneHit& planes() {
@@ -660,11 +653,6 @@ class RayWalk {
   SceneHit best_;
 
   bool found() const { return best_index_ != kNoIndex; }
-  float limit() const {
-    if (!found() || any_) return tmax_;
-    return std::min(tmax_, best_t_ + best_t_ * kBestSlack);
-  }
-
   // Entry t of the box (kInf when the ray does not enter it within [tmin, limit]).
   float enter(const float lo[3], const float hi[3], float limit) const {
     float tn = tmin_, tf = limit;
@@ -682,62 +670,10 @@ class RayWalk {
     if (t < best_t_ || (t == best_t_ && index < best_index_)) best_t_ = t, best_index_ = index, best_ = h;
   }
 
-  // Tree models: their own box first (cheap), then the exact raycast.
-  void test_boxed(uint32_t slot) {
-    const Placed& p = m_.placed[slot];
-    if (enter(p.lo, p.hi, limit()) < kInf) test(slot);
-  }
-
   void test(uint32_t slot) {
     // A smaller tmax only drops triangles beyond the best hit, which cannot win.
     const SceneHit h = hit_of(slot, found() && !any_ ? std::min(tmax_, best_t_) : tmax_);
     if (h.hit.hit) take(h.hit.t, m_.placed[slot].index, h);
-  }
-
-  // Pushes the entered children (n of them) farthest first, so the nearest is popped next;
-  // equal entries keep slot order, so the order is a function of the values alone.
-  static void push_sorted(Entry* hit, int n, Entry* stack, int& sp) {
-    for (int i = 1; i < n; ++i) {
-      const Entry e = hit[i];
-      int j = i;
-      while (j > 0 && hit[j - 1].near > e.near) hit[j] = hit[j - 1], --j;
-      hit[j] = e;
-    }
-    while (n > 0) stack[sp++] = hit[--n];
-  }
-
-  void walk_octree() {
-    const auto& nodes = m_.octree.nodes();
-    const auto& items = m_.octree.items();
-    Entry stack[kStackSize];
-    int sp = 0;
-    {
-      const OctreeNode& root = nodes[0];
-      const float t = enter(root.lo, root.hi, tmax_);
-      if (t < kInf) stack[sp++] = {0, t};
-    }
-    while (sp > 0) {
-      const Entry e = stack[--sp];
-      if (e.near > limit()) continue;
-      const OctreeNode& n = nodes[e.code];
-      if (n.first_child == kOctreeLeaf) {
-        for (uint32_t r = n.first_item; r < n.first_item + n.item_count; ++r) {
-          test_boxed(m_.tree_slots[items[r]]);
-          if (any_ && found()) return;
-        }
-        continue;
-      }
-      Entry hit[8];
-      int cnt = 0;
-      const float lim = limit();
-      for (uint32_t k = 0; k < 8; ++k) {
-        const OctreeNode& c = nodes[n.first_child + k];
-        if (!(c.lo[0] <= c.hi[0])) continue;
-        const float t = enter(c.lo, c.hi, lim);
-        if (t < kInf) hit[cnt++] = {n.first_child + k, t};
-      }
-      push_sorted(hit, cnt, stack, sp);
-    }
   }
 };
 
@@ -844,7 +780,6 @@ void trace_block(const Scene::Impl& m, const RaysView& rays, std::size_t begin, 
 SceneHit trace(const Scene& scene, const Ray& ray, float tmin, float tmax, bool any) {
   if (!valid_ray(ray, tmin, tmax)) return {};
   const Scene::Impl& m = *scene.impl();
-  if (m.built != SceneAccel::bvh) return RayWalk(m, ray, tmin, tmax, any).run();
   const RaysView view{&ray.origin.x, &ray.origin.y, &ray.origin.z, &ray.direction.x, &ray.direction.y,
                       &ray.direction.z, &tmin, &tmax};
   SceneHit h;
@@ -873,21 +808,12 @@ Status run_batch(const Scene& scene, const RaysView& rays, std::size_t n, const 
   scene.prepare();
   const Scene::Impl& m = *scene.impl();
   detail::parallel_for(n, kRayChunk, [&](std::size_t b, std::size_t e) {
-    if (m.built == SceneAccel::bvh) {
-      SceneHit out[kBlock];
-      bool valid[kBlock];
-      for (std::size_t s = b; s < e; s += kBlock) {
-        const std::size_t count = std::min(kBlock, e - s);
-        trace_block(m, rays, s, count, any, normals, out, valid);
-        for (std::size_t k = 0; k < count; ++k) write_hit(hits, s + k, out[k], valid[k], normals);
-      }
-      return;
-    }
-    for (std::size_t i = b; i < e; ++i) {
-      const Ray ray{{rays.ox[i], rays.oy[i], rays.oz[i]}, {rays.dx[i], rays.dy[i], rays.dz[i]}};
-      const float tmin = rays.tmin ? rays.tmin[i] : 0.0f, tmax = rays.tmax ? rays.tmax[i] : kInf;
-      const bool valid = valid_ray(ray, tmin, tmax);
-      write_hit(hits, i, valid ? RayWalk(m, ray, tmin, tmax, any).run() : SceneHit{}, valid, normals);
+    SceneHit out[kBlock];
+    bool valid[kBlock];
+    for (std::size_t s = b; s < e; s += kBlock) {
+      const std::size_t count = std::min(kBlock, e - s);
+      trace_block(m, rays, s, count, any, normals, out, valid);
+      for (std::size_t k = 0; k < count; ++k) write_hit(hits, s + k, out[k], valid[k], normals);
     }
   });
   return Status::ok;

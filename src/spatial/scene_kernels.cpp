@@ -1,7 +1,7 @@
-// scene_raycast at this translation unit's SIMD level: the walk of scene.cpp's RayWalk over
-// the models' 8-wide BVH, with a node's eight child boxes tested in one 8-wide lane (Oct), a
-// leaf's sphere models in one 4-wide lane and its box models in another (Quad, ray_sphere_t
-// and ray_obb_t: the scalar raycasts' expressions, so their bits).
+// scene_raycast at this translation unit's SIMD level: rays through the models' 8-wide BVH
+// (or the octree's node form, octree_bvh.hpp), with a node's eight child boxes tested in one
+// 8-wide lane (Oct), a leaf's sphere models in one 4-wide lane and its box models in another
+// (Quad, ray_sphere_t and ray_obb_t: the scalar raycasts' expressions, so their bits).
 //
 // Closest hit, rays from many origins: eight rays take turns, one visit each, and a node's
 // entered children are pushed in the node's stored order for the ray's octant, without a
@@ -20,7 +20,7 @@
 // (0 * inf) constrains nothing (`t > tn ? t : tn` keeps tn), subtrees entered beyond the
 // best t by 2^-16 of it are skipped, and ties go to the lowest id index. Every operation is
 // elementwise and the visiting order depends on float values only, so every level gives the
-// same bits as the scalar walk, and a ray's answer does not depend on the rays beside it.
+// brute-force loop's bits, and a ray's answer does not depend on the rays beside it.
 // The single walk mirrors bvh_kernels.cpp's instead of sharing helpers with it: factored
 // out, the mesh kernel ran 7 to 11% more instructions (callgrind, R2); even the child
 // ordering alone (one inline function for both, same results) cost R1 8.6% (27.9 M ->
@@ -32,8 +32,8 @@
 // (packet_walk.hpp; sharing it cost the LIDAR packets 2% more instructions).
 // Any hit: the walk stops at the first hit, a leaf's items tried in lane order and the
 // nodes in their stored order, so the model it names is the same at every level, thread
-// count and prefetch mode (the scalar walk of scene.cpp, which sorts by entry distance, may
-// name another; gyro/scene.hpp promises no more than that).
+// count and prefetch mode (another tree, the octree's, may name another; gyro/scene.hpp
+// promises no more than that).
 #include "geometry/ray_lanes.hpp"
 #include "spatial/bvh_order.hpp"
 #include "spatial/packet_walk.hpp"
@@ -97,7 +97,7 @@ inline float signed_pad(float pad, int neg) {
   return std::bit_cast<float>(std::bit_cast<uint32_t>(pad) ^ (uint32_t(neg) << 31));
 }
 
-// The scalar walk's limit: the best t plus its slack, never beyond tmax (any hit: tmax).
+// The limit: the best t plus its slack, never beyond tmax (any hit: tmax).
 inline float limit_of(const Walk& w, bool any_hit) {
   if (any_hit || !(w.best_t < kInf)) return w.tmax;
   const float l = w.best_t + w.best_t * kBestSlack;
@@ -199,7 +199,7 @@ template <bool AnyHit> inline bool visit_leaf(const SceneRaycastArgs& a, Walk& w
 inline unsigned entered(const Walk& w, const BvhNode8& node, Oct& tn) {
   tn = w.tmin8;
   Oct tf = Oct(w.limit);
-  for (int k = 0; k < 3; ++k) {  // the scalar walk's order: x, y, z, each slab value first
+  for (int k = 0; k < 3; ++k) {  // x, y, z, each slab value first, as RayWalk::enter (scene.cpp)
     const Oct t0 = (load<Oct>(detail::bounds_row(node, w.near_at[k])) - w.o_near[k]) * w.inv[k];
     const Oct t1 = (load<Oct>(detail::bounds_row(node, w.far_at[k])) - w.o_far[k]) * w.inv[k];
     tn = max(t0, tn);  // t0 > tn ? t0 : tn (lanes.hpp), one instruction on x86

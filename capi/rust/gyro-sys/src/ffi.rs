@@ -17,7 +17,7 @@ pub type gyro_shape_type = u32;
 pub type gyro_projection = u32;
 pub type gyro_model_shape = u32;
 pub type gyro_scene_accel = u32;
-/// Whether ray batches through a BVH scene prefetch each next visit's cache lines (ABI 1.7).
+/// Whether a scene's ray batches (either structure) prefetch each next visit's cache lines (ABI 1.7).
 /// Speed only, never a result. AUTO (the default): when the tree exceeds 8 MiB, where it paid
 /// on the machine the default was measured on (1 MiB L2 per core, 32 MiB L3).
 pub type gyro_ray_prefetch = u32;

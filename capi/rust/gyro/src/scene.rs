@@ -15,7 +15,7 @@ pub enum SceneAccel {
     Octree,
 }
 
-/// Whether ray batches through a BVH scene prefetch each next visit's cache lines (speed
+/// Whether a scene's ray batches (either structure) prefetch each next visit's cache lines (speed
 /// only, never a result): `Auto` (the default) when the tree exceeds 8 MiB.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum RayPrefetch {
