@@ -280,9 +280,11 @@ struct Scene::Impl {
       if (!placed[s].placed) continue;
       (placed[s].shape == ModelShape::plane ? plane_slots : tree_slots).push_back(s);
     }
+    // Slots are in id order until a remove moves the last slot into the gap, so the check
+    // usually spares the sort (R1's 10^4 spheres: a tenth of prepare()'s instructions).
     const auto by_index = [&](uint32_t a, uint32_t b) { return placed[a].index < placed[b].index; };
-    std::sort(tree_slots.begin(), tree_slots.end(), by_index);
-    std::sort(plane_slots.begin(), plane_slots.end(), by_index);
+    for (std::vector<uint32_t>* slots : {&tree_slots, &plane_slots})
+      if (!std::is_sorted(slots->begin(), slots->end(), by_index)) std::sort(slots->begin(), slots->end(), by_index);
     built = settings.accel;
     bvh = detail::BoxBvh8{};
     ray_leaves.clear();

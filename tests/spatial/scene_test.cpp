@@ -396,6 +396,21 @@ TEST(Scene, RaycastsEqualBruteForceInBothModes) {
   EXPECT_LT(hits, rays.set.size());
 }
 
+// Models crowded into a 1-unit cube: the octree cannot separate them (every child holds
+// nearly all of them until max_depth), so its leaves hold hundreds of models, nested under
+// several levels of nodes of their own in its node form. Still the brute-force answers.
+TEST(Scene, CrowdedModelsEqualBruteForceInBothModes) {
+  TestScene s(150, 23, 0.5f);
+  const Rays rays = make_rays(snapshot(s.scene), 400, 24);
+  std::size_t hits = 0;
+  check_raycasts(s.scene, rays, &hits);
+  EXPECT_GT(hits, 100u);
+  SceneSettings octree;
+  octree.accel = SceneAccel::octree;
+  ASSERT_EQ(s.scene.configure(octree), Status::ok);
+  EXPECT_GT(s.scene.stats().references, 3u * 150u);  // stored many times over
+}
+
 // A tree larger than a core's L2 cache (about 1 MiB of nodes and leaves): the batch closest
 // hits of a scene's BVH equal the octree's single-ray hits (another tree shape), ray for
 // ray, at every level and on 1 and 2 threads, with and without prefetching (RayPrefetch: the
