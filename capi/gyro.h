@@ -34,7 +34,7 @@ extern "C" {
 
 /** ABI version this header describes: (major << 16) | minor. A library with the same
  *  major and a minor >= the header's is compatible. */
-#define GYRO_ABI_VERSION ((1u << 16) | 7u)
+#define GYRO_ABI_VERSION ((1u << 16) | 8u)
 
 /** The ABI version of the linked library; compare with GYRO_ABI_VERSION. */
 GYRO_API uint32_t gyro_abi_version(void);
@@ -405,6 +405,12 @@ GYRO_API void gyro_scene_destroy(gyro_scene* scene);
 /** Sets the scene's gyro_ray_prefetch (ABI 1.7). NULL_ARGUMENT, or INVALID_ARGUMENT for an
  *  unknown mode; either changes nothing. */
 GYRO_API gyro_status gyro_scene_set_ray_prefetch(gyro_scene* scene, gyro_ray_prefetch mode);
+/** Whether moves alone (gyro_scene_set_transform) refit the scene's BVH instead of rebuilding
+ *  it (ABI 1.8; 1, the default, or 0): see SceneSettings::refit in gyro/scene.hpp. Hits are
+ *  the same either way, except which model an any hit names, which then depends on the
+ *  sequence of calls, not on the models alone. NULL_ARGUMENT, or INVALID_ARGUMENT for a
+ *  value other than 0 and 1; either changes nothing. */
+GYRO_API gyro_status gyro_scene_set_refit(gyro_scene* scene, uint32_t enabled);
 /** Errors change nothing: NULL_ARGUMENT, NON_FINITE, INVALID_ARGUMENT (negative size, zero
  *  rotation, scale <= 0, plane normal not unit, unknown shape, a parent cycle), STALE_ID. */
 GYRO_API gyro_status gyro_scene_add_model(gyro_scene* scene, const gyro_model_def* def, gyro_model_id* out);

@@ -135,6 +135,16 @@ GYRO_API gyro_status gyro_scene_set_ray_prefetch(gyro_scene* scene, gyro_ray_pre
   });
 }
 
+GYRO_API gyro_status gyro_scene_set_refit(gyro_scene* scene, uint32_t enabled) {
+  return guarded([&]() -> Status {
+    GYRO_TRY(require(scene, "scene"));
+    if (enabled > 1) return fail(Status::invalid_argument, "enabled = %u is neither 0 nor 1", enabled);
+    gyro::SceneSettings settings = scene->scene.settings();
+    settings.refit = enabled == 1;
+    return scene->scene.configure(settings);
+  });
+}
+
 GYRO_API gyro_status gyro_scene_add_model(gyro_scene* scene, const gyro_model_def* def, gyro_model_id* out) {
   return guarded([&]() -> Status {
     GYRO_TRY(require(scene, "scene"));

@@ -58,7 +58,7 @@ namespace Gyro.Native
     public static class Constants
     {
         /// <summary>The ABI this binding was written against: (major &lt;&lt; 16) | minor.</summary>
-        public const uint GYRO_ABI_VERSION = (1u << 16) | 7u;
+        public const uint GYRO_ABI_VERSION = (1u << 16) | 8u;
 
         public const uint GYRO_FEATURE_OPENMP = 1u << 0;
         public const uint GYRO_FEATURE_SIMD_SSE2 = 1u << 1;
@@ -960,6 +960,7 @@ namespace Gyro.Native
         [DllImport(Library, CallingConvention = Cdecl)] public static extern Status gyro_scene_create(SceneAccel accel, out SceneHandle @out);
         [DllImport(Library, CallingConvention = Cdecl)] public static extern void gyro_scene_destroy(IntPtr scene);
         [DllImport(Library, CallingConvention = Cdecl)] public static extern Status gyro_scene_set_ray_prefetch(SceneHandle scene, RayPrefetch mode);
+        [DllImport(Library, CallingConvention = Cdecl)] public static extern Status gyro_scene_set_refit(SceneHandle scene, uint enabled);
         [DllImport(Library, CallingConvention = Cdecl)] public static extern Status gyro_scene_add_model(SceneHandle scene, ModelDef* def, ModelId* @out);
         [DllImport(Library, CallingConvention = Cdecl)] public static extern Status gyro_scene_remove_model(SceneHandle scene, ModelId id);
         [DllImport(Library, CallingConvention = Cdecl)] public static extern Status gyro_scene_set_transform(SceneHandle scene, ModelId id, Transform* local);

@@ -496,6 +496,13 @@ namespace Gyro
             Check.Ok(N.gyro_scene_set_ray_prefetch(Handle, mode), "gyro_scene_set_ray_prefetch");
         }
 
+        /// <summary>Whether moves alone refit the BVH instead of rebuilding it (the default: true). Hits are
+        /// the same either way, except which model an any hit names.</summary>
+        public void SetRefit(bool enabled)
+        {
+            Check.Ok(N.gyro_scene_set_refit(Handle, enabled ? 1u : 0u), "gyro_scene_set_refit");
+        }
+
         /// <summary>Adds a model; def.Mesh must be IntPtr.Zero (use AddMesh for meshes).</summary>
         public ModelId AddModel(ModelDef def)
         {

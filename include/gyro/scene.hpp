@@ -156,7 +156,22 @@ struct SceneSettings {
   SceneAccel accel = SceneAccel::bvh;  ///< the structure queries walk
   OctreeDef octree;                    ///< used when accel == octree
   RayPrefetch ray_prefetch = RayPrefetch::automatic;  ///< for rays in either mode
+  /// Under the BVH, when only transforms changed since the last build (set_transform, no
+  /// add, remove, set_parent or configure) and every model stays placed, the next query
+  /// refits the tree (new boxes over the same topology) instead of rebuilding it, unless
+  /// the refit tree's expected ray cost exceeds kSceneRefitCost times the last build's.
+  /// On R1's 10^4 spheres with a tenth of them moved per frame, prepare() takes 0.5 ms
+  /// instead of 2.8 (one thread), and rays on the refit tree run up to about a fifth slower
+  /// than on a fresh one (set false where rays dominate a frame). Answers are the same
+  /// either way, except which model an any-hit names: that follows the tree, so the
+  /// sequence of calls (deterministic, like every result), not the models alone. False:
+  /// every change rebuilds, and the tree is a function of the models.
+  bool refit = true;
 };
+
+/// How much worse (SceneStats::sah_cost) a refit tree may get than the last full build's
+/// before a transform change rebuilds it instead.
+inline constexpr double kSceneRefitCost = 1.25;
 
 /// The shape of a scene's current structure.
 struct SceneStats {
@@ -169,6 +184,9 @@ struct SceneStats {
   std::size_t references = 0;   ///< model entries over all leaves (octree: >= tree_models)
   std::size_t max_depth = 0;    ///< of the structure (BVH: in 8-wide nodes, root = 1; octree: root = 0)
   std::size_t bytes = 0;        ///< structure and per-model arrays
+  double sah_cost = 0.0;        ///< BVH: expected node and leaf tests of a random ray (0 under the octree)
+  std::size_t builds = 0;       ///< full builds of the structure since the scene was made
+  std::size_t refits = 0;       ///< refits (SceneSettings::refit) since the scene was made
 };
 
 /// A set of models with a top-level acceleration structure.

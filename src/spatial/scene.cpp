@@ -241,6 +241,9 @@ struct Scene::Impl {
   std::mutex mutex;
   std::atomic<bool> world_ready{true};
   std::atomic<bool> tree_ready{false};
+  bool rebuild = true;      // a change other than transforms: the next build_tree() starts afresh
+  double built_sah = 0.0;   // the last full BVH build's sah_cost, which a refit may not exceed by kSceneRefitCost
+  std::size_t builds = 0, refits = 0;
 
   void changed() {
     world_ready.store(false, std::memory_order_relaxed);
@@ -274,17 +277,26 @@ struct Scene::Impl {
   }
 
   void build_tree() {
-    tree_slots.clear();
-    plane_slots.clear();
+    std::vector<uint32_t> tree, planes;
     for (uint32_t s = 0; s < pool.size(); ++s) {
       if (!placed[s].placed) continue;
-      (placed[s].shape == ModelShape::plane ? plane_slots : tree_slots).push_back(s);
+      (placed[s].shape == ModelShape::plane ? planes : tree).push_back(s);
     }
     // Slots are in id order until a remove moves the last slot into the gap, so the check
     // usually spares the sort (R1's 10^4 spheres: a tenth of prepare()'s instructions).
     const auto by_index = [&](uint32_t a, uint32_t b) { return placed[a].index < placed[b].index; };
-    for (std::vector<uint32_t>* slots : {&tree_slots, &plane_slots})
+    for (std::vector<uint32_t>* slots : {&tree, &planes})
       if (!std::is_sorted(slots->begin(), slots->end(), by_index)) std::sort(slots->begin(), slots->end(), by_index);
+    plane_slots = std::move(planes);
+    const bool same_items = tree == tree_slots;
+    tree_slots = std::move(tree);
+    if (!rebuild && same_items && settings.refit && built == SceneAccel::bvh && settings.accel == SceneAccel::bvh &&
+        refit_bvh()) {
+      ++refits;
+      return;
+    }
+    rebuild = false;
+    ++builds;
     built = settings.accel;
     bvh = detail::BoxBvh8{};
     ray_leaves.clear();
@@ -316,6 +328,66 @@ struct Scene::Impl {
     const std::size_t bytes = bvh.nodes.size() * sizeof(detail::BvhNode8) +
                               ray_leaves.size() * sizeof(detail::SceneLeaf4) + ray_boxes.size() * sizeof(detail::SceneBoxes4);
     rays_large = bytes > kFetchBytes;
+    built_sah = bvh.stats.sah_cost;
+  }
+
+  // The BVH's boxes from the models' current ones over the same topology: each slot the
+  // union of what it holds, children before parents (a node's children have higher
+  // indices: the build numbers nodes depth first). False when the refit tree's expected ray
+  // cost (the build's formula) exceeds kSceneRefitCost times the last build's: the caller
+  // then builds afresh, which overwrites whatever this wrote.
+  bool refit_bvh() {
+    auto& nodes = bvh.nodes;
+    if (nodes.empty() || tree_slots.empty()) return false;
+    std::vector<double> node_area(nodes.size()), leaf_area(bvh.leaves.size());
+    for (std::size_t i = nodes.size(); i-- > 0;) {
+      detail::BvhNode8& n = nodes[i];
+      float own_lo[3] = {kInf, kInf, kInf}, own_hi[3] = {-kInf, -kInf, -kInf};
+      for (int k = 0; k < 8; ++k) {
+        const uint32_t code = n.child[k];
+        if (code == detail::kEmptyChild) continue;
+        float lo[3] = {kInf, kInf, kInf}, hi[3] = {-kInf, -kInf, -kInf};
+        const auto grow = [&](const float* l, const float* h) {
+          for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], l[a]), hi[a] = std::max(hi[a], h[a]);
+        };
+        if (code & detail::kLeafBit) {
+          for (uint32_t item : bvh.leaves[code & ~detail::kLeafBit].item)
+            if (item != detail::kNoItem) grow(placed[tree_slots[item]].lo, placed[tree_slots[item]].hi);
+          leaf_area[code & ~detail::kLeafBit] = half_area(lo, hi);
+        } else {
+          if (code <= i) return false;  // not the build's numbering
+          const detail::BvhNode8& c = nodes[code];
+          for (int j = 0; j < 8; ++j) {
+            if (c.child[j] == detail::kEmptyChild) continue;
+            const float l[3] = {c.bounds[0][j], c.bounds[2][j], c.bounds[4][j]};
+            const float h[3] = {c.bounds[1][j], c.bounds[3][j], c.bounds[5][j]};
+            grow(l, h);
+          }
+        }
+        for (int a = 0; a < 3; ++a) {
+          n.bounds[2 * a][k] = lo[a], n.bounds[2 * a + 1][k] = hi[a];
+          own_lo[a] = std::min(own_lo[a], lo[a]), own_hi[a] = std::max(own_hi[a], hi[a]);
+        }
+      }
+      detail::set_child_orders(n);
+      node_area[i] = half_area(own_lo, own_hi);
+      if (i == 0) bvh.bounds = aabb_from_min_max({own_lo[0], own_lo[1], own_lo[2]}, {own_hi[0], own_hi[1], own_hi[2]});
+    }
+    const double root = std::max(node_area[0], 1e-300);
+    double sah = 0.0;
+    for (double a : node_area) sah += a / root;
+    for (double a : leaf_area) sah += a / root;
+    if (sah > kSceneRefitCost * built_sah) return false;
+    bvh.stats.sah_cost = sah;
+    ray_boxes.clear();
+    build_ray_leaves();
+    return true;
+  }
+
+  static double half_area(const float lo[3], const float hi[3]) {
+    if (!(lo[0] <= hi[0])) return 0.0;
+    const double dx = double(hi[0]) - lo[0], dy = double(hi[1]) - lo[1], dz = double(hi[2]) - lo[2];
+    return dx * dy + dy * dz + dz * dx;
   }
 
   // Each leaf's spheres and boxes as lanes for the ray kernel; meshes go to the exact test.
@@ -437,6 +509,7 @@ Status Scene::configure(const SceneSettings& s) {
   Octree probe;
   GYRO_TRY(probe.build(nullptr, nullptr, 0, s.octree));  // checks the def
   impl_->settings = s;
+  impl_->rebuild = true;
   impl_->tree_ready.store(false, std::memory_order_relaxed);
   return Status::ok;
 }
@@ -455,6 +528,7 @@ Status Scene::add_model(const ModelDef& def, ModelId* out) {
   d.transform = normalized_transform(def.transform);
   const ModelId id = id_of(m.pool.create());
   m.defs.push_back(std::move(d));
+  m.rebuild = true;
   m.changed();
   *out = id;
   return Status::ok;
@@ -473,6 +547,7 @@ Status Scene::remove_model(ModelId id) {
   const detail::IdPool::Removal r = m.pool.destroy(to_detail(id));
   if (r.moved_from != r.slot) m.defs[r.slot] = std::move(m.defs[r.moved_from]);
   m.defs.pop_back();
+  m.rebuild = true;
   m.changed();
   return Status::ok;
 }
@@ -501,6 +576,7 @@ Status Scene::set_parent(ModelId id, ModelId parent) {
                     parent.generation, id.index, id.generation);
   }
   m.defs[s].parent = parent;
+  m.rebuild = true;
   m.changed();
   return Status::ok;
 }
@@ -554,6 +630,8 @@ SceneStats Scene::stats() const {
   s.models = m.pool.size();
   s.tree_models = m.tree_slots.size();
   s.planes = m.plane_slots.size();
+  s.builds = m.builds, s.refits = m.refits;
+  if (m.built == SceneAccel::bvh) s.sah_cost = m.bvh.stats.sah_cost;
   // Both modes' rays walk m.bvh (under the octree, its node form: octree_bvh.hpp).
   s.bytes = m.bvh.stats.bytes + m.ray_leaves.size() * sizeof(detail::SceneLeaf4) + m.ray_boxes.size() * sizeof(detail::SceneBoxes4);
   if (m.built == SceneAccel::bvh) {

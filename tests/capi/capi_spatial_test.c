@@ -198,6 +198,22 @@ static void test_scene(gyro_scene_accel accel) {
     CHECK(t[0] == 4.0f && model[0].index == sphere.index && t[2] == 4.5f && model[2].index == inst.index);
     CHECK(t[3] == 2.0f && model[3].index == plane.index && prim[4] == GYRO_RAY_INVALID);
   }
+  /* refit (ABI 1.8): the box moved away and back refits the tree or rebuilds it, the same
+     hits either way; bad calls change nothing */
+  CHECK(gyro_scene_set_refit(NULL, 1) == GYRO_STATUS_NULL_ARGUMENT);
+  CHECK(gyro_scene_set_refit(scene, 2) == GYRO_STATUS_INVALID_ARGUMENT);
+  for (uint32_t on = 0; on <= 1; ++on) {
+    gyro_transform moved = gyro_model_def_default().transform;
+    CHECK(gyro_scene_set_refit(scene, on) == GYRO_OK);
+    moved.position[0] = 3, moved.position[1] = 40, moved.position[2] = 5;
+    CHECK(gyro_scene_set_transform(scene, box, &moved) == GYRO_OK);
+    CHECK(gyro_scene_raycast_closest(scene, &rays, 5, &hits) == GYRO_OK);
+    CHECK(t[0] == 4.0f && model[0].index == sphere.index && model[1].index == 0 && t[2] == 4.5f);
+    moved.position[1] = 0;
+    CHECK(gyro_scene_set_transform(scene, box, &moved) == GYRO_OK);
+    CHECK(gyro_scene_raycast_closest(scene, &rays, 5, &hits) == GYRO_OK);
+    CHECK(t[1] == 4.0f && model[1].index == box.index && t[3] == 2.0f && model[3].index == plane.index);
+  }
 
   /* queries */
   query.type = GYRO_SHAPE_SPHERE, query.reserved = 0;

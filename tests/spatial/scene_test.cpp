@@ -340,16 +340,54 @@ class ScopedExecution {
 
 // Every raycast path against the brute force, in both modes; the batch at every level and
 // at 1 and 3 threads. *hit_count gets how many rays hit (so a test can insist they do).
-void check_raycasts(Scene& scene, const Rays& rays, std::size_t* hit_count) {
+// The brute-force answers of the scene's models as they are now.
+std::vector<SceneHit> brute_answers(const Scene& scene, const Rays& rays, std::size_t* hits, std::size_t* invalid) {
+  const std::vector<Snapshot> models = snapshot(scene);
+  std::vector<SceneHit> expect(rays.set.size());
+  for (std::size_t i = 0; i < expect.size(); ++i) {
+    expect[i] = brute_closest(models, rays.ray(i), rays.tmin[i], rays.tmax[i]);
+    *hits += expect[i].hit.hit;
+    *invalid += !ray_valid(rays, i);
+  }
+  return expect;
+}
+
+// The scene's single and batch raycasts, in its current structure, against `expect`: at
+// every level and on 1 and 3 threads; any hits name a model hit where the closest hit is,
+// the same one everywhere.
+void expect_raycasts(Scene& scene, const Rays& rays, const std::vector<SceneHit>& expect) {
   const std::vector<Snapshot> models = snapshot(scene);
   const std::size_t n = rays.set.size();
-  std::vector<SceneHit> expect(n);
-  std::size_t hits = 0, invalid = 0;
   for (std::size_t i = 0; i < n; ++i) {
-    expect[i] = brute_closest(models, rays.ray(i), rays.tmin[i], rays.tmax[i]);
-    hits += expect[i].hit.hit;
-    invalid += !ray_valid(rays, i);
+    expect_same(raycast(scene, rays.ray(i), rays.tmin[i], rays.tmax[i]), expect[i], i);
+    const SceneHit any = raycast_any(scene, rays.ray(i), rays.tmin[i], rays.tmax[i]);
+    ASSERT_EQ(any.hit.hit, expect[i].hit.hit) << "ray " << i;
+    if (any.hit.hit) {
+      // The model it names is hit, and the hit reported is that model's own closest one.
+      const auto it = std::find_if(models.begin(), models.end(), [&](const Snapshot& m) { return m.id == any.model; });
+      ASSERT_NE(it, models.end());
+      expect_same(any, model_hit(*it, rays.ray(i), rays.tmin[i], rays.tmax[i]), i);
+    }
   }
+  std::vector<ModelId> any_first;
+  for (const SimdLevel level : testing::available_levels())
+    for (const uint32_t threads : {1u, 3u}) {
+      ScopedExecution exec(level, threads);
+      Columns c(n);
+      ASSERT_EQ(raycast_closest(scene, rays.view(), n, c.out()), Status::ok);
+      for (std::size_t i = 0; i < n; ++i) expect_batch_matches(c, expect, rays, i);
+      expect_bare_batch_matches(scene, expect, rays);
+      Columns a(n);
+      ASSERT_EQ(raycast_any(scene, rays.view(), n, a.out()), Status::ok);
+      if (any_first.empty()) any_first = a.model;
+      EXPECT_EQ(a.model, any_first) << simd_level_name(level) << " x" << threads;
+      for (std::size_t i = 0; i < n; ++i) ASSERT_EQ(a.model[i].is_null(), !expect[i].hit.hit) << "ray " << i;
+    }
+}
+
+void check_raycasts(Scene& scene, const Rays& rays, std::size_t* hit_count) {
+  std::size_t hits = 0, invalid = 0;
+  const std::vector<SceneHit> expect = brute_answers(scene, rays, &hits, &invalid);
   EXPECT_GT(invalid, 0u);  // the zero directions
   *hit_count = hits;
   // The octree three ways: small leaves; leaves of up to 16 and a root leaf holding every
@@ -359,31 +397,7 @@ void check_raycasts(Scene& scene, const Rays& rays, std::size_t* hit_count) {
   modes[1].octree = {5, 4}, modes[2].octree = {3, 16}, modes[3].octree = {0, 1};
   for (const SceneSettings& settings : modes) {
     EXPECT_EQ(scene.configure(settings), Status::ok);
-    for (std::size_t i = 0; i < n; ++i) {
-      expect_same(raycast(scene, rays.ray(i), rays.tmin[i], rays.tmax[i]), expect[i], i);
-      const SceneHit any = raycast_any(scene, rays.ray(i), rays.tmin[i], rays.tmax[i]);
-      ASSERT_EQ(any.hit.hit, expect[i].hit.hit) << "ray " << i;
-      if (any.hit.hit) {
-        // The model it names is hit, and the hit reported is that model's own closest one.
-        const auto it = std::find_if(models.begin(), models.end(), [&](const Snapshot& m) { return m.id == any.model; });
-        ASSERT_NE(it, models.end());
-        expect_same(any, model_hit(*it, rays.ray(i), rays.tmin[i], rays.tmax[i]), i);
-      }
-    }
-    std::vector<ModelId> any_first;
-    for (const SimdLevel level : testing::available_levels())
-      for (const uint32_t threads : {1u, 3u}) {
-        ScopedExecution exec(level, threads);
-        Columns c(n);
-        ASSERT_EQ(raycast_closest(scene, rays.view(), n, c.out()), Status::ok);
-        for (std::size_t i = 0; i < n; ++i) expect_batch_matches(c, expect, rays, i);
-        expect_bare_batch_matches(scene, expect, rays);
-        Columns a(n);
-        ASSERT_EQ(raycast_any(scene, rays.view(), n, a.out()), Status::ok);
-        if (any_first.empty()) any_first = a.model;
-        EXPECT_EQ(a.model, any_first) << simd_level_name(level) << " x" << threads;
-        for (std::size_t i = 0; i < n; ++i) ASSERT_EQ(a.model[i].is_null(), !expect[i].hit.hit) << "ray " << i;
-      }
+    expect_raycasts(scene, rays, expect);
   }
 }
 
@@ -742,6 +756,17 @@ bool plane_in_frustum(const Frustum& f, const Plane& p) {
   return above != 8 && below != 8;
 }
 
+// Whether a model overlaps the query sphere, by gyro's own tests on its world shape.
+bool touches(const Snapshot& m, const Sphere& sphere) {
+  switch (m.info.def.shape) {
+    case ModelShape::sphere: return overlaps(sphere, m.info.sphere);
+    case ModelShape::box: return overlaps(sphere, m.info.box);
+    case ModelShape::plane: return overlaps(sphere, m.info.plane);
+    case ModelShape::mesh: return overlaps(*m.info.def.mesh, to_local(m.info.world, sphere));
+  }
+  return false;
+}
+
 TEST(Scene, QueriesEqualBruteForceInBothModes) {
   TestScene s(300, 61);
   SplitMix64 rng(62);
@@ -754,15 +779,7 @@ TEST(Scene, QueriesEqualBruteForceInBothModes) {
       const vec3 c{uni(rng, -60, 60), uni(rng, -60, 60), uni(rng, -60, 60)};
       const Sphere sphere{c, uni(rng, 0, 15)};
       ASSERT_EQ(query(s.scene, sphere, got), Status::ok);
-      EXPECT_EQ(got, brute_query(models, [&](const Snapshot& m) {
-                  switch (m.info.def.shape) {
-                    case ModelShape::sphere: return overlaps(sphere, m.info.sphere);
-                    case ModelShape::box: return overlaps(sphere, m.info.box);
-                    case ModelShape::plane: return overlaps(sphere, m.info.plane);
-                    case ModelShape::mesh: return overlaps(*m.info.def.mesh, to_local(m.info.world, sphere));
-                  }
-                  return false;
-                }));
+      EXPECT_EQ(got, brute_query(models, [&](const Snapshot& m) { return touches(m, sphere); }));
       found += got.size();
       const AABB box{c, {uni(rng, 0, 12), uni(rng, 0, 12), uni(rng, 0, 12)}};
       ASSERT_EQ(query(s.scene, box, got), Status::ok);
@@ -805,6 +822,71 @@ TEST(Scene, QueriesEqualBruteForceInBothModes) {
     }
   }
   EXPECT_GT(found, 1000u);
+}
+
+// Moves alone refit the BVH (SceneSettings::refit): the same answers as brute force over
+// the moved models, rays and queries, with the tree's topology kept; moves that spoil the
+// tree (its expected cost beyond kSceneRefitCost times the build's) rebuild it, and so do
+// adds, and every move when refit is off.
+TEST(Scene, MovesRefitTheTreeAndStayExact) {
+  TestScene s(300, 71);
+  SplitMix64 rng(72);
+  const auto moved = [&](ModelId id, float by) {
+    ModelInfo info;
+    EXPECT_EQ(s.scene.model(id, &info), Status::ok);
+    ModelTransform t = info.def.transform;
+    t.position = t.position + vec3{uni(rng, -by, by), uni(rng, -by, by), uni(rng, -by, by)};
+    t.rotation = random_rotation(rng);
+    return t;
+  };
+  const auto check = [&](uint64_t seed) {
+    const Rays rays = make_rays(snapshot(s.scene), 500, seed);
+    std::size_t hits = 0, invalid = 0;
+    const std::vector<SceneHit> expect = brute_answers(s.scene, rays, &hits, &invalid);
+    EXPECT_GT(hits, 150u);
+    expect_raycasts(s.scene, rays, expect);
+    const auto models = snapshot(s.scene);
+    std::vector<ModelId> got;
+    for (int q = 0; q < 30; ++q) {
+      const Sphere sphere{{uni(rng, -60, 60), uni(rng, -60, 60), uni(rng, -60, 60)}, uni(rng, 0, 15)};
+      ASSERT_EQ(query(s.scene, sphere, got), Status::ok);
+      EXPECT_EQ(got, brute_query(models, [&](const Snapshot& m) { return touches(m, sphere); }));
+    }
+  };
+  check(73);
+  SceneStats st = s.scene.stats();
+  EXPECT_EQ(st.builds, 1u);
+  EXPECT_EQ(st.refits, 0u);
+  const double built_cost = st.sah_cost;
+  EXPECT_GT(built_cost, 1.0);
+  // A fifth of the models (some parents, so their children move too) a few units each.
+  for (std::size_t i = 0; i < s.ids.size(); i += 5) ASSERT_EQ(s.scene.set_transform(s.ids[i], moved(s.ids[i], 3.0f)), Status::ok);
+  check(74);
+  st = s.scene.stats();
+  EXPECT_EQ(st.builds, 1u);
+  EXPECT_EQ(st.refits, 1u);
+  EXPECT_NE(st.sah_cost, built_cost);
+  EXPECT_LE(st.sah_cost, kSceneRefitCost * built_cost);
+  // Every model far across the scene: the old topology no longer fits, so a rebuild.
+  for (ModelId id : s.ids) ASSERT_EQ(s.scene.set_transform(id, moved(id, 60.0f)), Status::ok);
+  check(75);
+  st = s.scene.stats();
+  EXPECT_EQ(st.builds, 2u);
+  EXPECT_EQ(st.refits, 1u);
+  // An add rebuilds.
+  s.add(random_def(rng, s.meshes, s.ids));
+  check(76);
+  EXPECT_EQ(s.scene.stats().builds, 3u);
+  // Without refit, a move rebuilds too.
+  SceneSettings no_refit;
+  no_refit.refit = false;
+  ASSERT_EQ(s.scene.configure(no_refit), Status::ok);
+  check(77);
+  ASSERT_EQ(s.scene.set_transform(s.ids[3], moved(s.ids[3], 1.0f)), Status::ok);
+  check(78);
+  st = s.scene.stats();
+  EXPECT_EQ(st.builds, 5u);
+  EXPECT_EQ(st.refits, 1u);
 }
 
 TEST(Scene, PickHitsTheModelUnderTheCursor) {

@@ -271,7 +271,8 @@ uint64_t scene_mesh_bvh() {
 
 // A scene of spheres, boxes, instanced meshes (scaled, rotated, some parented) and two
 // planes, in both acceleration modes: batch closest and any hits with model ids, normals
-// and barycentrics, and sphere, AABB and frustum queries; then after removes and moves.
+// and barycentrics, and sphere, AABB and frustum queries; then after removes and moves
+// (a rebuild), then after moves alone (a refit under the BVH).
 uint64_t scene_models() {
   static const std::vector<std::shared_ptr<const TriangleMesh>> meshes = [] {
     std::vector<std::shared_ptr<const TriangleMesh>> out;
@@ -323,7 +324,7 @@ uint64_t scene_models() {
     plane.plane = {{0.0f, 1.0f, 0.0f}, -35.0f};
     ModelId pid;
     if (scene.add_model(plane, &pid) != Status::ok) return 0;
-    for (int round = 0; round < 2; ++round) {
+    for (int round = 0; round < 3; ++round) {
       std::vector<float> t(rays.size()), nx(rays.size()), ny(rays.size()), nz(rays.size()), u(rays.size()), v(rays.size());
       std::vector<ModelId> model(rays.size());
       std::vector<int32_t> prim(rays.size());
@@ -334,6 +335,14 @@ uint64_t scene_models() {
       if (raycast_any(scene, rays.view(), rays.size(), SceneHitsOut{t.data(), model.data(), prim.data()}) != Status::ok)
         return 0;
       for (std::size_t i = 0; i < rays.size(); ++i) h.add_u32(prim[i] >= -1 ? uint32_t(prim[i] >= 0) : 2u);
+      if (round == 2) {
+        // After moves alone the BVH was refit (SceneSettings::refit), not rebuilt: which model
+        // an any hit names follows the tree, so it is pinned here, with the refit's cost.
+        for (std::size_t i = 0; i < rays.size(); ++i) h.add_u32(model[i].index);
+        const SceneStats st = scene.stats();
+        h.add_u32(uint32_t(st.builds)), h.add_u32(uint32_t(st.refits));
+        h.add_u64(std::bit_cast<uint64_t>(st.sah_cost));
+      }
       std::vector<ModelId> found;
       if (query(scene, Sphere{{1.0f, 2.0f, 3.0f}, 12.0f}, found) != Status::ok) return 0;
       for (ModelId id : found) h.add_u32(id.index);
@@ -343,6 +352,15 @@ uint64_t scene_models() {
       set_look_at(cam, {0.0f, 5.0f, -45.0f}, {0.0f, 0.0f, 0.0f}, {0.0f, 1.0f, 0.0f});
       if (query(scene, frustum(cam), found) != Status::ok) return 0;
       for (ModelId id : found) h.add_u32(id.index);
+      // Round 3: every fourth model moved (a refit under the BVH: 2 builds, 1 refit).
+      for (std::size_t i = 0; i < ids.size() && round == 1; i += 4) {
+        if (!scene.contains(ids[i])) continue;
+        ModelInfo info;
+        if (scene.model(ids[i], &info) != Status::ok) return 0;
+        ModelTransform tr = info.def.transform;
+        tr.position = tr.position + vec3{-0.75f, 0.5f, 1.0f};
+        if (scene.set_transform(ids[i], tr) != Status::ok) return 0;
+      }
       // Round 2: every fifth model removed, every third moved.
       for (std::size_t i = 0; i < ids.size() && round == 0; ++i) {
         if (i % 5 == 0) {
@@ -893,7 +911,7 @@ const DetScene kScenes[] = {
 #if defined(GYRO_HAS_SPATIAL)
     {"mesh_bvh", scene_mesh_bvh, 0x443954b2125dc999ull},
     {"camera_frustum", scene_camera_frustum, 0x246ff5bf8a6a766cull},
-    {"scene_models", scene_models, 0xf0754d52193f4864ull},
+    {"scene_models", scene_models, 0x8a6af0034215bd71ull},
     {"rays_one_origin", scene_rays_one_origin, 0x4ee4f0393c05adbaull},
     {"mesh_slivers", scene_mesh_slivers, 0xa80aeab449555782ull},
 #endif

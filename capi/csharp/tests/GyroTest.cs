@@ -351,6 +351,14 @@ namespace Gyro.Tests
                     for (int k = 0; k < 5; ++k)
                         Ok(hits.T[k] == before[k], accel + ": prefetch " + mode + " changes no t");
                 }
+                foreach (bool on in new[] { false, true })
+                {
+                    s.SetRefit(on);
+                    s.SetTransform(box, Transform.At(new Vec3(10, 0, 0)));
+                    s.RaycastClosest(rays, hits);
+                    for (int k = 0; k < 5; ++k)
+                        Ok(hits.T[k] == before[k], accel + ": refit " + on + " after a move changes no t");
+                }
 
                 SceneHitBatch any = new SceneHitBatch(5, normals: false);
                 s.RaycastAny(rays, any);

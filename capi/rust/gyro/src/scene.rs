@@ -95,6 +95,12 @@ impl Scene {
         check(unsafe { sys::gyro_scene_set_ray_prefetch(self.raw.as_ptr(), m) })
     }
 
+    /// Sets whether moves alone refit the BVH instead of rebuilding it (the default: true).
+    /// Hits are the same either way, except which model an any hit names.
+    pub fn set_refit(&mut self, enabled: bool) -> Result<()> {
+        check(unsafe { sys::gyro_scene_set_refit(self.raw.as_ptr(), u32::from(enabled)) })
+    }
+
     /// A unit sphere at the origin, identity transform, no parent.
     pub fn model_def() -> ModelDef {
         unsafe { sys::gyro_model_def_default() }

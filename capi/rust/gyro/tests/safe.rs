@@ -250,6 +250,16 @@ fn scene_raycasts_name_the_model_hit() {
         scene.raycast_closest(&rays, &mut hits2).unwrap();
         assert_eq!(t2.map(f32::to_bits), before.map(f32::to_bits));
     }
+    // Refit or rebuild after a move, the same hits.
+    for on in [false, true] {
+        scene.set_refit(on).unwrap();
+        scene.set_transform(cube_id, &cube.transform).unwrap();
+        let mut t2 = [0.0f32; 4];
+        let mut model2 = [ModelId { index: 0, generation: 0 }; 4];
+        let mut hits2 = SceneHits { t: &mut t2, model: &mut model2, primitive: None, normal: None, uv: None };
+        scene.raycast_closest(&rays, &mut hits2).unwrap();
+        assert_eq!(t2.map(f32::to_bits), before.map(f32::to_bits));
+    }
 
     let near = scene.query_sphere(vec3(0.0, 0.0, 6.5), 1.0).unwrap();
     assert_eq!(near.len(), 1);
