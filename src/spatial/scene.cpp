@@ -1,6 +1,7 @@
 // Scenes (gyro/scene.hpp): models in dense slots under an IdPool, world transforms and the
 // top-level structure (a BVH over boxes from spatial/bvh.hpp, or gyro::Octree) recomputed
-// lazily, and the queries over them.
+// lazily (the BVH refit when only transforms changed: SceneSettings::refit), and the
+// queries over them.
 //
 // Exactness of the traversal. Every model's tree box is its world shape's AABB padded by
 // 2^-16 of its magnitude (|centre| + half extent), and a ray widens every box it tests by
