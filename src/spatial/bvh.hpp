@@ -96,6 +96,22 @@ struct BvhBox {
   float hi[3];
 };
 
+/// A union of boxes given by float corners, starting empty (+inf, -inf), for code that fills
+/// or refits 8-wide nodes outside the builder (whose own boxes are SIMD vectors).
+struct BoxUnion {
+  float lo[3] = {__builtin_inff(), __builtin_inff(), __builtin_inff()};
+  float hi[3] = {-__builtin_inff(), -__builtin_inff(), -__builtin_inff()};
+  void grow(const float l[3], const float h[3]) {
+    for (int a = 0; a < 3; ++a) lo[a] = l[a] < lo[a] ? l[a] : lo[a], hi[a] = hi[a] < h[a] ? h[a] : hi[a];
+  }
+  /// Half the surface area in double, as the builder's SAH cost counts it (0 when empty).
+  double half_area() const {
+    if (!(lo[0] <= hi[0])) return 0.0;
+    const double dx = double(hi[0]) - lo[0], dy = double(hi[1]) - lo[1], dz = double(hi[2]) - lo[2];
+    return dx * dy + dy * dz + dz * dx;
+  }
+};
+
 /// A node whose slots are all empty: bounds (+inf, -inf), which no slab test enters.
 BvhNode8 empty_node8();
 /// Sets node.order from its children's bounds (the builder's rule: for each octant, the slots

@@ -6,15 +6,6 @@
 namespace gyro::detail {
 namespace {
 
-constexpr float kInf = __builtin_inff();
-
-struct Bounds {
-  float lo[3] = {kInf, kInf, kInf}, hi[3] = {-kInf, -kInf, -kInf};
-  void grow(const float l[3], const float h[3]) {
-    for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], l[a]), hi[a] = std::max(hi[a], h[a]);
-  }
-};
-
 class Flattener {
  public:
   Flattener(const Octree& octree, const BvhBox* boxes, BoxBvh8& out) : tree_(octree), boxes_(boxes), out_(out) {}
@@ -49,8 +40,8 @@ class Flattener {
     n.child[k] = code;
   }
 
-  Bounds items_bounds(const uint32_t* items, uint32_t count) const {
-    Bounds b;
+  BoxUnion items_bounds(const uint32_t* items, uint32_t count) const {
+    BoxUnion b;
     for (uint32_t i = 0; i < count; ++i) b.grow(boxes_[items[i]].lo, boxes_[items[i]].hi);
     return b;
   }
@@ -72,7 +63,7 @@ class Flattener {
       if (b0 == b1) continue;
       const uint32_t first = 4 * b0, n = std::min(count, 4 * b1) - first;
       const uint32_t code = b1 - b0 == 1 ? block(items + first, n) : holder(items + first, n, depth + 1);
-      const Bounds b = items_bounds(items + first, n);
+      const BoxUnion b = items_bounds(items + first, n);
       set_slot(me, int(g), code, b.lo, b.hi);
     }
     set_child_orders(out_.nodes[me]);

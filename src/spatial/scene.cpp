@@ -343,18 +343,15 @@ struct Scene::Impl {
     std::vector<double> node_area(nodes.size()), leaf_area(bvh.leaves.size());
     for (std::size_t i = nodes.size(); i-- > 0;) {
       detail::BvhNode8& n = nodes[i];
-      float own_lo[3] = {kInf, kInf, kInf}, own_hi[3] = {-kInf, -kInf, -kInf};
+      detail::BoxUnion own;
       for (int k = 0; k < 8; ++k) {
         const uint32_t code = n.child[k];
         if (code == detail::kEmptyChild) continue;
-        float lo[3] = {kInf, kInf, kInf}, hi[3] = {-kInf, -kInf, -kInf};
-        const auto grow = [&](const float* l, const float* h) {
-          for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], l[a]), hi[a] = std::max(hi[a], h[a]);
-        };
+        detail::BoxUnion slot;
         if (code & detail::kLeafBit) {
           for (uint32_t item : bvh.leaves[code & ~detail::kLeafBit].item)
-            if (item != detail::kNoItem) grow(placed[tree_slots[item]].lo, placed[tree_slots[item]].hi);
-          leaf_area[code & ~detail::kLeafBit] = half_area(lo, hi);
+            if (item != detail::kNoItem) slot.grow(placed[tree_slots[item]].lo, placed[tree_slots[item]].hi);
+          leaf_area[code & ~detail::kLeafBit] = slot.half_area();
         } else {
           if (code <= i) return false;  // not the build's numbering
           const detail::BvhNode8& c = nodes[code];
@@ -362,17 +359,15 @@ struct Scene::Impl {
             if (c.child[j] == detail::kEmptyChild) continue;
             const float l[3] = {c.bounds[0][j], c.bounds[2][j], c.bounds[4][j]};
             const float h[3] = {c.bounds[1][j], c.bounds[3][j], c.bounds[5][j]};
-            grow(l, h);
+            slot.grow(l, h);
           }
         }
-        for (int a = 0; a < 3; ++a) {
-          n.bounds[2 * a][k] = lo[a], n.bounds[2 * a + 1][k] = hi[a];
-          own_lo[a] = std::min(own_lo[a], lo[a]), own_hi[a] = std::max(own_hi[a], hi[a]);
-        }
+        for (int a = 0; a < 3; ++a) n.bounds[2 * a][k] = slot.lo[a], n.bounds[2 * a + 1][k] = slot.hi[a];
+        own.grow(slot.lo, slot.hi);
       }
       detail::set_child_orders(n);
-      node_area[i] = half_area(own_lo, own_hi);
-      if (i == 0) bvh.bounds = aabb_from_min_max({own_lo[0], own_lo[1], own_lo[2]}, {own_hi[0], own_hi[1], own_hi[2]});
+      node_area[i] = own.half_area();
+      if (i == 0) bvh.bounds = aabb_from_min_max({own.lo[0], own.lo[1], own.lo[2]}, {own.hi[0], own.hi[1], own.hi[2]});
     }
     const double root = std::max(node_area[0], 1e-300);
     double sah = 0.0;
@@ -383,12 +378,6 @@ struct Scene::Impl {
     ray_boxes.clear();
     build_ray_leaves();
     return true;
-  }
-
-  static double half_area(const float lo[3], const float hi[3]) {
-    if (!(lo[0] <= hi[0])) return 0.0;
-    const double dx = double(hi[0]) - lo[0], dy = double(hi[1]) - lo[1], dz = double(hi[2]) - lo[2];
-    return dx * dy + dy * dz + dz * dx;
   }
 
   // Each leaf's spheres and boxes as lanes for the ray kernel; meshes go to the exact test.
