@@ -26,7 +26,8 @@
 //    one side of it. Results are ids in ascending order (index, then generation).
 //  - Changes (add, remove, set_transform, set_parent, configure) mark the world
 //    transforms and the tree dirty; the next query (or prepare()) recomputes them, from
-//    the set of models alone (models taken in id order), so equal scenes give equal trees.
+//    the set of models alone (models taken in id order), so equal scenes give equal trees
+//    (with SceneSettings::refit, moves alone refit the tree and redo only what moved).
 //    const queries may run concurrently; the first one after a change rebuilds under a
 //    lock. Changes must not run alongside queries.
 //  - A model whose world transform or bounds overflow float (a chain of huge scales) is
@@ -160,9 +161,12 @@ struct SceneSettings {
   /// add, remove, set_parent or configure) and every model stays placed, the next query
   /// refits the tree (new boxes over the same topology) instead of rebuilding it, unless
   /// the refit tree's expected ray cost exceeds kSceneRefitCost times the last build's.
-  /// On R1's 10^4 spheres with a tenth of them moved per frame, prepare() takes 0.5 ms
-  /// instead of 2.8 (one thread), and rays on the refit tree run up to about a fifth slower
-  /// than on a fresh one (set false where rays dominate a frame). Answers are the same
+  /// A refit, like the world transforms before it, redoes only what the moves since the
+  /// last query touched: the moved models and their descendants, the leaves holding them and
+  /// the nodes above those. On R1's 10^4 spheres (one thread), prepare() after moving a
+  /// tenth of them takes 0.23 ms, a hundredth 0.06 ms, a thousandth 0.014 ms, against 2.8 ms
+  /// for a rebuild. Rays on a refit tree run up to about a fifth slower than on a fresh one
+  /// (set false where rays dominate a frame). Answers are the same
   /// either way, except which model an any-hit names: that follows the tree, so the
   /// sequence of calls (deterministic, like every result), not the models alone. False:
   /// every change rebuilds, and the tree is a function of the models.

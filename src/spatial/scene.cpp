@@ -30,6 +30,7 @@
 #include "gyro/overlap.hpp"
 #include "gyro/raycast.hpp"
 #include "spatial/bvh.hpp"
+#include "spatial/bvh_refit.hpp"
 #include "spatial/octree_bvh.hpp"
 #include "spatial/scene_rays.hpp"
 
@@ -245,6 +246,24 @@ struct Scene::Impl {
   bool rebuild = true;      // a change other than transforms: the next build_tree() starts afresh
   double built_sah = 0.0;   // the last full BVH build's sah_cost, which a refit may not exceed by kSceneRefitCost
   std::size_t builds = 0, refits = 0;
+  // A frame pays for what moved. compute_world() places again only the models moved since it
+  // last ran, with their descendants, unless world_all: after an add, a remove or a
+  // reparenting, or once the moves reach a quarter of the models, it places every model.
+  bool world_all = true;
+  std::vector<uint32_t> moved;        // slots, each once
+  std::vector<uint8_t> moved_mark;    // by slot
+  std::vector<uint32_t> child_begin;  // children by slot (child_slots[child_begin[s] ..]); empty: no model has a parent
+  std::vector<uint32_t> child_slots;
+  std::vector<uint32_t> place_stack;  // place_from()'s, kept to spare an allocation per move
+  // The models placed again since the tree was last built or refit (each once), or every
+  // model (tree_all); and whether one of them became placed or unplaced (the items changed).
+  std::vector<uint32_t> replaced;
+  std::vector<uint8_t> replaced_mark;  // by slot
+  bool tree_all = true;
+  bool items_changed = false;
+  // The BVH's tree item of each slot (kNoIndex: none) and its links for a partial refit.
+  std::vector<uint32_t> slot_item;
+  detail::BvhRefit links;
 
   void changed() {
     world_ready.store(false, std::memory_order_relaxed);
@@ -253,8 +272,32 @@ struct Scene::Impl {
 
   uint32_t slot(ModelId id) const { return pool.slot(to_detail(id)); }
 
+  // A move of slot s: noted for the next compute_world(), unless that places every model.
+  void note_move(uint32_t s) {
+    if (world_all || moved_mark[s]) return;
+    if (4 * (moved.size() + 1) > pool.size()) {
+      world_all = true;
+      return;
+    }
+    moved_mark[s] = 1;
+    moved.push_back(s);
+  }
+
   void compute_world() {
     const uint32_t n = pool.size();
+    if (!world_all && placed.size() == n) {
+      for (uint32_t s : moved) place_from(s);
+      for (uint32_t s : moved) moved_mark[s] = 0;
+      moved.clear();
+      return;
+    }
+    world_all = false;
+    moved.clear();
+    moved_mark.assign(n, 0);
+    replaced.clear();
+    replaced_mark.assign(n, 0);
+    tree_all = true;
+    link_children();
     placed.assign(n, Placed{});
     std::vector<uint8_t> done(n, 0);
     std::vector<uint32_t> chain;
@@ -277,25 +320,79 @@ struct Scene::Impl {
     }
   }
 
-  void build_tree() {
-    std::vector<uint32_t> tree, planes;
-    for (uint32_t s = 0; s < pool.size(); ++s) {
-      if (!placed[s].placed) continue;
-      (placed[s].shape == ModelShape::plane ? planes : tree).push_back(s);
+  // Places slot s again and, depth first, its descendants (each from its parent's world,
+  // which is current: the parent was either not moved or placed just before it), noting
+  // each for the tree. Moves of both a model and its ancestor place it twice, the second
+  // time from its ancestor's new world: the same result in either order.
+  void place_from(uint32_t s) {
+    std::vector<uint32_t>& stack = place_stack;
+    stack.assign(1, s);
+    while (!stack.empty()) {
+      const uint32_t c = stack.back();
+      stack.pop_back();
+      const ModelDef& d = defs[c];
+      const ModelTransform w = d.parent.is_null() ? d.transform : compose(d.transform, placed[slot(d.parent)].world);
+      const bool was = placed[c].placed;
+      placed[c] = place(d, w, pool.id_at(c).index);
+      items_changed = items_changed || placed[c].placed != was;
+      if (!tree_all && !replaced_mark[c]) replaced_mark[c] = 1, replaced.push_back(c);
+      if (!child_begin.empty()) stack.insert(stack.end(), child_slots.begin() + child_begin[c], child_slots.begin() + child_begin[c + 1]);
     }
-    // Slots are in id order until a remove moves the last slot into the gap, so the check
-    // usually spares the sort (R1's 10^4 spheres: a tenth of prepare()'s instructions).
-    const auto by_index = [&](uint32_t a, uint32_t b) { return placed[a].index < placed[b].index; };
-    for (std::vector<uint32_t>* slots : {&tree, &planes})
-      if (!std::is_sorted(slots->begin(), slots->end(), by_index)) std::sort(slots->begin(), slots->end(), by_index);
-    plane_slots = std::move(planes);
-    const bool same_items = tree == tree_slots;
-    tree_slots = std::move(tree);
+  }
+
+  // child_begin and child_slots from the defs (in slot order), or empty when no model has a parent.
+  void link_children() {
+    const uint32_t n = pool.size();
+    child_begin.clear();
+    child_slots.clear();
+    std::vector<uint32_t> parent(n, kNoIndex);
+    bool any = false;
+    for (uint32_t s = 0; s < n; ++s)
+      if (!defs[s].parent.is_null()) parent[s] = slot(defs[s].parent), any = true;
+    if (!any) return;
+    child_begin.assign(n + 1, 0);
+    for (uint32_t s = 0; s < n; ++s)
+      if (parent[s] != kNoIndex) ++child_begin[parent[s] + 1];
+    for (uint32_t s = 0; s < n; ++s) child_begin[s + 1] += child_begin[s];
+    child_slots.resize(child_begin[n]);
+    std::vector<uint32_t> at(child_begin.begin(), child_begin.end() - 1);
+    for (uint32_t s = 0; s < n; ++s)
+      if (parent[s] != kNoIndex) child_slots[at[parent[s]]++] = s;
+  }
+
+  // After a build or refit: nothing is pending for the tree.
+  void tree_settled() {
+    for (uint32_t s : replaced) replaced_mark[s] = 0;
+    replaced.clear();
+    tree_all = false;
+    items_changed = false;
+  }
+
+  void build_tree() {
+    // Moves that placed or unplaced no model keep the items (and the plane list) as they are.
+    bool same_items = !rebuild && !tree_all && !items_changed;
+    if (!same_items) {
+      std::vector<uint32_t> tree, planes;
+      for (uint32_t s = 0; s < pool.size(); ++s) {
+        if (!placed[s].placed) continue;
+        (placed[s].shape == ModelShape::plane ? planes : tree).push_back(s);
+      }
+      // Slots are in id order until a remove moves the last slot into the gap, so the check
+      // usually spares the sort (R1's 10^4 spheres: a tenth of prepare()'s instructions).
+      const auto by_index = [&](uint32_t a, uint32_t b) { return placed[a].index < placed[b].index; };
+      for (std::vector<uint32_t>* slots : {&tree, &planes})
+        if (!std::is_sorted(slots->begin(), slots->end(), by_index)) std::sort(slots->begin(), slots->end(), by_index);
+      plane_slots = std::move(planes);
+      same_items = tree == tree_slots;
+      tree_slots = std::move(tree);
+    }
     if (!rebuild && same_items && settings.refit && built == SceneAccel::bvh && settings.accel == SceneAccel::bvh &&
         refit_bvh()) {
       ++refits;
+      tree_settled();
       return;
     }
+    tree_settled();
     rebuild = false;
     ++builds;
     built = settings.accel;
@@ -309,8 +406,14 @@ struct Scene::Impl {
       const Placed& p = placed[tree_slots[k]];
       boxes[k] = {{p.lo[0], p.lo[1], p.lo[2]}, {p.hi[0], p.hi[1], p.hi[2]}};
     }
+    slot_item.clear();  // refit_bvh() refits only a tree linked when it was built
     if (built == SceneAccel::bvh) {
       bvh = detail::build_box_bvh8(boxes.data(), boxes.size());
+      if (settings.refit) {
+        links.link(bvh, tree_slots.size());
+        slot_item.assign(pool.size(), kNoIndex);
+        for (std::size_t k = 0; k < tree_slots.size(); ++k) slot_item[tree_slots[k]] = uint32_t(k);
+      }
     } else {
       std::vector<AABB> bounds(tree_slots.size());
       std::vector<uint32_t> ids(tree_slots.size());
@@ -332,93 +435,77 @@ struct Scene::Impl {
     built_sah = bvh.stats.sah_cost;
   }
 
-  // The BVH's boxes from the models' current ones over the same topology: each slot the
-  // union of what it holds, children before parents (a node's children have higher
-  // indices: the build numbers nodes depth first). False when the refit tree's expected ray
-  // cost (the build's formula) exceeds kSceneRefitCost times the last build's: the caller
-  // then builds afresh, which overwrites whatever this wrote.
+  // The BVH's boxes from the models' current ones over the same topology, for the leaves
+  // holding a model placed again and the nodes above them (bvh_refit.hpp: the same bytes as
+  // refitting every node). False when the refit tree's expected ray cost (the build's
+  // formula) exceeds kSceneRefitCost times the last build's: the caller then builds afresh,
+  // which overwrites whatever this wrote.
   bool refit_bvh() {
-    auto& nodes = bvh.nodes;
-    if (nodes.empty() || tree_slots.empty()) return false;
-    std::vector<double> node_area(nodes.size()), leaf_area(bvh.leaves.size());
-    for (std::size_t i = nodes.size(); i-- > 0;) {
-      detail::BvhNode8& n = nodes[i];
-      detail::BoxUnion own;
-      for (int k = 0; k < 8; ++k) {
-        const uint32_t code = n.child[k];
-        if (code == detail::kEmptyChild) continue;
-        detail::BoxUnion slot;
-        if (code & detail::kLeafBit) {
-          for (uint32_t item : bvh.leaves[code & ~detail::kLeafBit].item)
-            if (item != detail::kNoItem) slot.grow(placed[tree_slots[item]].lo, placed[tree_slots[item]].hi);
-          leaf_area[code & ~detail::kLeafBit] = slot.half_area();
-        } else {
-          if (code <= i) return false;  // not the build's numbering
-          const detail::BvhNode8& c = nodes[code];
-          for (int j = 0; j < 8; ++j) {
-            if (c.child[j] == detail::kEmptyChild) continue;
-            const float l[3] = {c.bounds[0][j], c.bounds[2][j], c.bounds[4][j]};
-            const float h[3] = {c.bounds[1][j], c.bounds[3][j], c.bounds[5][j]};
-            slot.grow(l, h);
-          }
-        }
-        for (int a = 0; a < 3; ++a) n.bounds[2 * a][k] = slot.lo[a], n.bounds[2 * a + 1][k] = slot.hi[a];
-        own.grow(slot.lo, slot.hi);
-      }
-      detail::set_child_orders(n);
-      node_area[i] = own.half_area();
-      if (i == 0) bvh.bounds = aabb_from_min_max({own.lo[0], own.lo[1], own.lo[2]}, {own.hi[0], own.hi[1], own.hi[2]});
+    if (bvh.nodes.empty() || tree_slots.empty() || slot_item.size() != pool.size()) return false;
+    if (tree_all) {
+      links.mark_all();
+    } else {
+      for (uint32_t s : replaced)
+        if (slot_item[s] != kNoIndex) links.mark_item(slot_item[s]);
     }
-    const double root = std::max(node_area[0], 1e-300);
-    double sah = 0.0;
-    for (double a : node_area) sah += a / root;
-    for (double a : leaf_area) sah += a / root;
-    if (sah > kSceneRefitCost * built_sah) return false;
-    bvh.stats.sah_cost = sah;
-    ray_boxes.clear();
-    build_ray_leaves();
-    return true;
+    const bool ok = links.refit(bvh, [&](uint32_t item, float lo[3], float hi[3]) {
+      const Placed& p = placed[tree_slots[item]];
+      for (int a = 0; a < 3; ++a) lo[a] = p.lo[a], hi[a] = p.hi[a];
+    });
+    if (ok && bvh.stats.sah_cost <= kSceneRefitCost * built_sah) links.each_marked_leaf([&](uint32_t l) { write_ray_leaf(l); });
+    links.clear_marks();
+    return ok && bvh.stats.sah_cost <= kSceneRefitCost * built_sah;
   }
 
   // Each leaf's spheres and boxes as lanes for the ray kernel; meshes go to the exact test.
   void build_ray_leaves() {
     ray_leaves.resize(bvh.leaves.size());
-    const float nan = __builtin_nanf("");
     for (std::size_t l = 0; l < bvh.leaves.size(); ++l) {
-      detail::SceneLeaf4& r = ray_leaves[l];
-      r = detail::SceneLeaf4{};
-      r.box_block = detail::kNoItem;
-      detail::SceneBoxes4 boxes;
-      boxes.mask = 0;
-      for (int k = 0; k < 4; ++k) {
-        const uint32_t item = bvh.leaves[l].item[k];
-        r.item[k] = item;
-        r.key[k] = item == detail::kNoItem ? detail::kNoItem : placed[tree_slots[item]].index;
-        const Placed* p = item == detail::kNoItem ? nullptr : &placed[tree_slots[item]];
-        const bool sphere = p && p->shape == ModelShape::sphere;
-        r.sphere[0][k] = sphere ? p->sphere.center.x : nan;
-        r.sphere[1][k] = sphere ? p->sphere.center.y : nan;
-        r.sphere[2][k] = sphere ? p->sphere.center.z : nan;
-        r.sphere[3][k] = sphere ? p->sphere.radius : nan;
-        if (p && p->shape == ModelShape::box) {
-          const OBB& b = p->box;
-          const mat3& o = b.orientation;
-          const float v[15] = {b.center.x, b.center.y, b.center.z, b.half_extents.x, b.half_extents.y,
-                               b.half_extents.z, o.m[0][0], o.m[0][1], o.m[0][2], o.m[1][0], o.m[1][1],
-                               o.m[1][2], o.m[2][0], o.m[2][1], o.m[2][2]};
-          // The first box fills every lane (a valid box, so no lane computes on garbage);
-          // later boxes take their own.
-          for (int j = boxes.mask ? k : 0; j < 4; ++j)
-            for (int row = 0; row < 15; ++row) boxes.obb[row][j] = v[row];
-          boxes.mask |= 1u << k;
-        } else if (p && !sphere) {
-          r.exact_mask |= 1u << k;
-        }
+      ray_leaves[l].box_block = detail::kNoItem;
+      write_ray_leaf(l);
+    }
+  }
+
+  // Leaf l's lanes from its models' current placements. A leaf that had a box block keeps
+  // its place in ray_boxes (a refit: the same items, so the same shapes); one without gets a
+  // new block if it holds a box.
+  void write_ray_leaf(std::size_t l) {
+    const float nan = __builtin_nanf("");
+    detail::SceneLeaf4& r = ray_leaves[l];
+    const uint32_t block = r.box_block;
+    r = detail::SceneLeaf4{};
+    r.box_block = detail::kNoItem;
+    detail::SceneBoxes4 boxes;
+    boxes.mask = 0;
+    for (int k = 0; k < 4; ++k) {
+      const uint32_t item = bvh.leaves[l].item[k];
+      r.item[k] = item;
+      r.key[k] = item == detail::kNoItem ? detail::kNoItem : placed[tree_slots[item]].index;
+      const Placed* p = item == detail::kNoItem ? nullptr : &placed[tree_slots[item]];
+      const bool sphere = p && p->shape == ModelShape::sphere;
+      r.sphere[0][k] = sphere ? p->sphere.center.x : nan;
+      r.sphere[1][k] = sphere ? p->sphere.center.y : nan;
+      r.sphere[2][k] = sphere ? p->sphere.center.z : nan;
+      r.sphere[3][k] = sphere ? p->sphere.radius : nan;
+      if (p && p->shape == ModelShape::box) {
+        const OBB& b = p->box;
+        const mat3& o = b.orientation;
+        const float v[15] = {b.center.x, b.center.y, b.center.z, b.half_extents.x, b.half_extents.y,
+                             b.half_extents.z, o.m[0][0], o.m[0][1], o.m[0][2], o.m[1][0], o.m[1][1],
+                             o.m[1][2], o.m[2][0], o.m[2][1], o.m[2][2]};
+        // The first box fills every lane (a valid box, so no lane computes on garbage);
+        // later boxes take their own.
+        for (int j = boxes.mask ? k : 0; j < 4; ++j)
+          for (int row = 0; row < 15; ++row) boxes.obb[row][j] = v[row];
+        boxes.mask |= 1u << k;
+      } else if (p && !sphere) {
+        r.exact_mask |= 1u << k;
       }
-      if (boxes.mask) {
-        r.box_block = uint32_t(ray_boxes.size());
-        ray_boxes.push_back(boxes);
-      }
+    }
+    if (boxes.mask) {
+      r.box_block = block != detail::kNoItem ? block : uint32_t(ray_boxes.size());
+      if (block != detail::kNoItem) ray_boxes[block] = boxes;
+      else ray_boxes.push_back(boxes);
     }
   }
 
@@ -519,6 +606,7 @@ Status Scene::add_model(const ModelDef& def, ModelId* out) {
   const ModelId id = id_of(m.pool.create());
   m.defs.push_back(std::move(d));
   m.rebuild = true;
+  m.world_all = true;
   m.changed();
   *out = id;
   return Status::ok;
@@ -538,6 +626,7 @@ Status Scene::remove_model(ModelId id) {
   if (r.moved_from != r.slot) m.defs[r.slot] = std::move(m.defs[r.moved_from]);
   m.defs.pop_back();
   m.rebuild = true;
+  m.world_all = true;
   m.changed();
   return Status::ok;
 }
@@ -548,6 +637,7 @@ Status Scene::set_transform(ModelId id, const ModelTransform& local) {
   if (s == detail::IdPool::kNoSlot) return fail(Status::stale_id, "model {%u, %u} is not live", id.index, id.generation);
   GYRO_TRY(check_transform(local, "transform"));
   m.defs[s].transform = normalized_transform(local);
+  m.note_move(s);
   m.changed();
   return Status::ok;
 }
@@ -567,6 +657,7 @@ Status Scene::set_parent(ModelId id, ModelId parent) {
   }
   m.defs[s].parent = parent;
   m.rebuild = true;
+  m.world_all = true;
   m.changed();
   return Status::ok;
 }
@@ -632,6 +723,10 @@ SceneStats Scene::stats() const {
     s.nodes = o.nodes, s.leaves = o.leaves, s.max_depth = o.max_depth, s.references = o.references, s.bytes += o.bytes;
   }
   s.bytes += m.placed.size() * sizeof(Placed) + m.defs.size() * sizeof(ModelDef);
+  // The bookkeeping that lets a frame pay for what moved.
+  s.bytes += m.links.bytes() + (m.slot_item.capacity() + m.moved.capacity() + m.replaced.capacity() +
+                                m.child_begin.capacity() + m.child_slots.capacity()) * sizeof(uint32_t) +
+             m.moved_mark.capacity() + m.replaced_mark.capacity();
   return s;
 }
 

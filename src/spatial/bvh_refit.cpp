@@ -1,0 +1,102 @@
+#include "spatial/bvh_refit.hpp"
+
+#include <algorithm>
+
+namespace gyro::detail {
+
+BoxUnion BvhRefit::slots_of(const BvhNode8& node) {
+  BoxUnion u;
+  for (int j = 0; j < 8; ++j) {
+    if (node.child[j] == kEmptyChild) continue;
+    const float l[3] = {node.bounds[0][j], node.bounds[2][j], node.bounds[4][j]};
+    const float h[3] = {node.bounds[1][j], node.bounds[3][j], node.bounds[5][j]};
+    u.grow(l, h);
+  }
+  return u;
+}
+
+void BvhRefit::link(const BoxBvh8& bvh, std::size_t items) {
+  const std::size_t nodes = bvh.nodes.size(), leaves = bvh.leaves.size();
+  item_leaf_.assign(items, kNoItem);
+  leaf_parent_.assign(leaves, kNoItem);
+  node_parent_.assign(nodes, kNoItem);
+  node_area_.assign(nodes, 0.0);
+  leaf_area_.assign(leaves, 0.0);
+  node_mark_.assign(nodes, 0);
+  leaf_mark_.assign(leaves, 0);
+  marked_nodes_.clear();
+  marked_leaves_.clear();
+  for (std::size_t l = 0; l < leaves; ++l)
+    for (uint32_t item : bvh.leaves[l].item)
+      if (item != kNoItem && item < items) item_leaf_[item] = uint32_t(l);
+  // The areas as refit() computes them, from the same stored bounds (so the same bits).
+  for (std::size_t i = 0; i < nodes; ++i) {
+    const BvhNode8& n = bvh.nodes[i];
+    node_area_[i] = slots_of(n).half_area();
+    for (int k = 0; k < 8; ++k) {
+      const uint32_t code = n.child[k];
+      if (code == kEmptyChild) continue;
+      if (code & kLeafBit) {
+        const uint32_t l = code & ~kLeafBit;
+        if (l >= leaves) continue;
+        leaf_parent_[l] = uint32_t(i);
+        BoxUnion slot;
+        const float lo[3] = {n.bounds[0][k], n.bounds[2][k], n.bounds[4][k]};
+        const float hi[3] = {n.bounds[1][k], n.bounds[3][k], n.bounds[5][k]};
+        slot.grow(lo, hi);
+        leaf_area_[l] = slot.half_area();
+      } else if (code < nodes) {
+        node_parent_[code] = uint32_t(i);
+      }
+    }
+  }
+}
+
+void BvhRefit::mark_item(uint32_t item) {
+  if (item >= item_leaf_.size() || item_leaf_[item] == kNoItem) return;
+  const uint32_t l = item_leaf_[item];
+  if (leaf_mark_[l]) return;  // its ancestors too
+  leaf_mark_[l] = 1, marked_leaves_.push_back(l);
+  for (uint32_t n = leaf_parent_[l]; n != kNoItem && !node_mark_[n]; n = node_parent_[n])
+    node_mark_[n] = 1, marked_nodes_.push_back(n);
+}
+
+void BvhRefit::mark_all() {
+  std::fill(node_mark_.begin(), node_mark_.end(), uint8_t(1));
+  std::fill(leaf_mark_.begin(), leaf_mark_.end(), uint8_t(1));
+  marked_nodes_.clear();
+  marked_leaves_.clear();
+  all_marked_ = true;
+}
+
+void BvhRefit::clear_marks() {
+  if (all_marked_) {
+    std::fill(node_mark_.begin(), node_mark_.end(), uint8_t(0));
+    std::fill(leaf_mark_.begin(), leaf_mark_.end(), uint8_t(0));
+  } else {
+    for (uint32_t n : marked_nodes_) node_mark_[n] = 0;
+    for (uint32_t l : marked_leaves_) leaf_mark_[l] = 0;
+  }
+  marked_nodes_.clear();
+  marked_leaves_.clear();
+  all_marked_ = false;
+}
+
+std::size_t BvhRefit::bytes() const {
+  return (item_leaf_.capacity() + leaf_parent_.capacity() + node_parent_.capacity() + marked_nodes_.capacity() +
+          marked_leaves_.capacity()) * sizeof(uint32_t) +
+         (node_area_.capacity() + leaf_area_.capacity()) * sizeof(double) + node_mark_.capacity() + leaf_mark_.capacity();
+}
+
+// The build's formula (bvh_build.cpp): every node's and leaf block's half area over the
+// root's, summed in index order, nodes first.
+double BvhRefit::sah_cost() const {
+  if (node_area_.empty()) return 0.0;
+  const double root = std::max(node_area_[0], 1e-300);
+  double sah = 0.0;
+  for (double a : node_area_) sah += a / root;
+  for (double a : leaf_area_) sah += a / root;
+  return sah;
+}
+
+}  // namespace gyro::detail

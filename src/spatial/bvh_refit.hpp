@@ -1,0 +1,91 @@
+// Refitting a BVH over boxes (BoxBvh8) to its items' new boxes over the same topology,
+// touching only what changed: the leaves holding a moved item and the nodes above them. A
+// frame that moves a few of a scene's models then costs what moved times the depth, not the
+// whole tree (Box2D's, Jolt's and Bullet's trees update their moved proxies the same way).
+//
+// Exactness: a slot's box is the union of what it holds, and min and max are exact and do
+// not depend on the order of their operands (the boxes have no signed zeros: lo = c - h - pad
+// and hi = c + h + pad are never -0), so refitting only the marked nodes gives the same bytes
+// as recomputing every node, and as the build gave for a subtree that did not move. The
+// expected ray cost is summed over every node and leaf block in index order with the build's
+// formula, so it too is the full refit's, to the bit.
+#pragma once
+
+#include "spatial/bvh.hpp"
+
+#include <cstdint>
+#include <vector>
+
+namespace gyro::detail {
+
+class BvhRefit {
+ public:
+  /// Reads the links of a freshly built tree over `items` items (item -> leaf block, leaf
+  /// block and node -> parent node) and each node's and leaf block's area; marks nothing.
+  void link(const BoxBvh8& bvh, std::size_t items);
+
+  /// Marks the leaf block holding `item` and every node above it.
+  void mark_item(uint32_t item);
+  /// Marks every node and leaf block (a refit of the whole tree).
+  void mark_all();
+  /// Calls f(leaf) for each marked leaf block.
+  template <class F> void each_marked_leaf(F&& f) const {
+    if (all_marked_) {
+      for (std::size_t l = 0; l < leaf_mark_.size(); ++l) f(uint32_t(l));
+    } else {
+      for (uint32_t l : marked_leaves_) f(l);
+    }
+  }
+
+  /// Recomputes the marked nodes' slot boxes, children before parents (the build numbers
+  /// nodes depth first, so a child's index is above its parent's), each leaf slot from
+  /// box(item, lo, hi), then their octant orders, the tree's bounds and its expected ray cost
+  /// (the build's formula). False when the numbering is not the build's: the caller then
+  /// rebuilds, which overwrites whatever this wrote. The marks stay for each_marked_leaf()
+  /// until clear_marks().
+  template <class BoxOf> bool refit(BoxBvh8& bvh, BoxOf&& box) {
+    for (std::size_t i = bvh.nodes.size(); i-- > 0;) {
+      if (!node_mark_[i]) continue;
+      BvhNode8& n = bvh.nodes[i];
+      BoxUnion own;
+      for (int k = 0; k < 8; ++k) {
+        const uint32_t code = n.child[k];
+        if (code == kEmptyChild) continue;
+        BoxUnion slot;
+        if (code & kLeafBit) {
+          const uint32_t l = code & ~kLeafBit;
+          float lo[3], hi[3];
+          for (uint32_t item : bvh.leaves[l].item)
+            if (item != kNoItem) box(item, lo, hi), slot.grow(lo, hi);
+          leaf_area_[l] = slot.half_area();
+        } else {
+          if (code <= i) return false;
+          slot = slots_of(bvh.nodes[code]);
+        }
+        for (int a = 0; a < 3; ++a) n.bounds[2 * a][k] = slot.lo[a], n.bounds[2 * a + 1][k] = slot.hi[a];
+        own.grow(slot.lo, slot.hi);
+      }
+      set_child_orders(n);
+      node_area_[i] = own.half_area();
+      if (i == 0) bvh.bounds = aabb_from_min_max({own.lo[0], own.lo[1], own.lo[2]}, {own.hi[0], own.hi[1], own.hi[2]});
+    }
+    bvh.stats.sah_cost = sah_cost();
+    return true;
+  }
+
+  void clear_marks();
+  /// Heap bytes held (the links, areas and marks).
+  std::size_t bytes() const;
+
+ private:
+  std::vector<uint32_t> item_leaf_, leaf_parent_, node_parent_;
+  std::vector<double> node_area_, leaf_area_;
+  std::vector<uint8_t> node_mark_, leaf_mark_;
+  std::vector<uint32_t> marked_nodes_, marked_leaves_;  // what clear_marks() resets
+  bool all_marked_ = false;
+
+  static BoxUnion slots_of(const BvhNode8& node);
+  double sah_cost() const;
+};
+
+}  // namespace gyro::detail
