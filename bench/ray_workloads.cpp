@@ -300,13 +300,13 @@ GyroRuns run_gyro_mesh(const Options& o, const MeshData& mesh, const RayCase& c)
   GyroRuns rates;
   TriangleMesh tm;
   // The build runs on the thread count of each line, as Embree's does (the same bytes at
-  // every count; the last build serves the rays).
+  // every count; the last build serves the rays): the median of o.reps builds after a
+  // warm-up, like the rays' times and Embree's builds (one cold build swung by half).
   std::map<uint32_t, double> build_ms;
   for (uint32_t threads : threads_to_run(o)) {
     set_thread_count(threads);
-    const auto start = std::chrono::steady_clock::now();
-    const Status st = TriangleMesh::create(mesh, tm);
-    build_ms[threads] = ms_since(start);
+    Status st = Status::ok;
+    build_ms[threads] = median_ms(o.reps, [&] { st = TriangleMesh::create(mesh, tm); });
     if (st != Status::ok) {
       std::printf("# gyro TriangleMesh not available yet (%s: %s)\n", status_name(st), last_error());
       set_thread_count(0);
@@ -394,23 +394,28 @@ GyroRuns run_gyro_spheres_scene(const Options& o, const testing::SphereSet& sphe
   for (const SceneAccel accel : {SceneAccel::bvh, SceneAccel::octree}) {
     const bool bvh = accel == SceneAccel::bvh;
     const std::string tree = bvh ? "scene_bvh" : "scene_octree";
-    const auto start = std::chrono::steady_clock::now();
-    SceneSettings settings;
-    settings.accel = accel;
-    Scene scene(settings);
-    for (std::size_t i = 0; i < spheres.size(); ++i) {
-      ModelDef d;
-      d.shape = ModelShape::sphere;
-      d.radius = spheres.r[i];
-      d.transform.position = {spheres.cx[i], spheres.cy[i], spheres.cz[i]};
-      ModelId id;
-      if (scene.add_model(d, &id) != Status::ok) {
-        std::printf("# gyro scene: add_model failed (%s)\n", last_error());
-        return rates;
+    // Adding the models and the first prepare(): the median of o.reps scenes after a warm-up.
+    Scene scene;
+    bool added = true;
+    const double build_ms = median_ms(o.reps, [&] {
+      SceneSettings settings;
+      settings.accel = accel;
+      Scene fresh(settings);
+      for (std::size_t i = 0; i < spheres.size() && added; ++i) {
+        ModelDef d;
+        d.shape = ModelShape::sphere;
+        d.radius = spheres.r[i];
+        d.transform.position = {spheres.cx[i], spheres.cy[i], spheres.cz[i]};
+        ModelId id;
+        added = fresh.add_model(d, &id) == Status::ok;
       }
+      fresh.prepare();
+      scene = std::move(fresh);
+    });
+    if (!added) {
+      std::printf("# gyro scene: add_model failed (%s)\n", last_error());
+      return rates;
     }
-    scene.prepare();
-    const double build_ms = ms_since(start);
     const SceneStats st = scene.stats();
     if (!bvh)
       std::printf("# gyro octree: %zu nodes, %zu leaves, %zu references to %zu spheres, depth %zu\n", st.nodes,
@@ -477,13 +482,22 @@ void run_embree(const Options& o, Geometry g, const MeshData* mesh, const testin
   for (uint32_t threads : threads_to_run(o)) {
     for (bool robust : {false, true}) {
       if (robust && g == Geometry::spheres) continue;  // the flag only changes the triangle test
+      // The median of o.reps builds after a warm-up, as gyro's; the last one serves the rays.
       PeerBuild b;
-      const auto scene = g == Geometry::triangles ? EmbreeScene::triangles(*mesh, robust, threads, b)
-                                                  : EmbreeScene::spheres(*spheres, threads, b);
-      if (!scene) {
-        std::printf("# Embree scene build failed\n");
-        return;
+      std::unique_ptr<EmbreeScene> scene;
+      std::vector<double> builds;
+      for (int rep = 0; rep <= std::max(1, o.reps); ++rep) {
+        scene = g == Geometry::triangles ? EmbreeScene::triangles(*mesh, robust, threads, b)
+                                         : EmbreeScene::spheres(*spheres, threads, b);
+        if (!scene) {
+          std::printf("# Embree scene build failed\n");
+          return;
+        }
+        if (rep > 0) builds.push_back(b.ms);
       }
+      std::sort(builds.begin(), builds.end());
+      const std::size_t h = builds.size() / 2;
+      b.ms = builds.size() % 2 ? builds[h] : 0.5 * (builds[h - 1] + builds[h]);
       for (EmbreeMethod m : {EmbreeMethod::intersect1, EmbreeMethod::intersect16, EmbreeMethod::occluded1,
                              EmbreeMethod::occluded16}) {
         const bool occluded = m == EmbreeMethod::occluded1 || m == EmbreeMethod::occluded16;
