@@ -115,19 +115,34 @@ Status check_shape(const ModelDef& d) {
   return fail(Status::invalid_argument, "ModelDef.shape = %u is not a model shape", unsigned(d.shape));
 }
 
-// A model's world placement: what every query reads (dense, by slot).
+// A model's world placement: what every query reads (dense, by slot). One OBB holds the
+// world shape of every kind (a sphere's centre and radius, a plane's normal and distance,
+// in its first fields), so a model costs 160 bytes here, not the 232 of a field per kind
+// and a rotation matrix (which equals a box's orientation).
 struct Placed {
   ModelShape shape = ModelShape::sphere;
   uint32_t index = 0;  // the id's index: the tie-break of every query
   bool placed = false;
   ModelTransform world;
-  mat3 rot;
-  Sphere sphere;
-  OBB box;
-  Plane plane;
+  OBB box;  // a box's box, a mesh's oriented bounds (orientation: the world rotation)
   AABB bounds;
-  float lo[3] = {0.0f, 0.0f, 0.0f}, hi[3] = {0.0f, 0.0f, 0.0f};  // the tree's box: aabb_min / aabb_max(bounds)
   const TriangleMesh* mesh = nullptr;
+
+  Sphere sphere() const { return {box.center, box.half_extents.x}; }
+  Plane plane() const { return {box.center, box.half_extents.x}; }
+  void set_sphere(const Sphere& s) { box.center = s.center, box.half_extents.x = s.radius; }
+  void set_plane(const Plane& p) { box.center = p.normal, box.half_extents.x = p.distance; }
+};
+static_assert(sizeof(Placed) <= 136, "the per-model placement grew");
+
+// A model's box in the tree: aabb_min(bounds) and aabb_max(bounds), computed where needed
+// (the same expressions every time, so the same bits as when they were stored).
+struct Corners {
+  float lo[3], hi[3];
+  explicit Corners(const Placed& p) {
+    const vec3 l = aabb_min(p.bounds), h = aabb_max(p.bounds);
+    lo[0] = l.x, lo[1] = l.y, lo[2] = l.z, hi[0] = h.x, hi[1] = h.y, hi[2] = h.z;
+  }
 };
 
 Placed place(const ModelDef& d, const ModelTransform& w, uint32_t index) {
@@ -135,36 +150,35 @@ Placed place(const ModelDef& d, const ModelTransform& w, uint32_t index) {
   p.shape = d.shape;
   p.index = index;
   p.world = w;
-  p.rot = to_mat3(w.rotation);
+  const mat3 rot = to_mat3(w.rotation);
   p.mesh = d.mesh.get();
   vec3 centre = w.position, half{0.0f, 0.0f, 0.0f};
   switch (d.shape) {
     case ModelShape::sphere:
-      p.sphere = {w.position, d.radius * w.scale};
-      half = vec3{p.sphere.radius, p.sphere.radius, p.sphere.radius};
+      p.set_sphere({w.position, d.radius * w.scale});
+      half = vec3{p.box.half_extents.x, p.box.half_extents.x, p.box.half_extents.x};
       break;
     case ModelShape::box:
-      p.box = {w.position, d.half_extents * w.scale, p.rot};
-      half = aabb_half_extents(p.rot, p.box.half_extents);
+      p.box = {w.position, d.half_extents * w.scale, rot};
+      half = aabb_half_extents(rot, p.box.half_extents);
       break;
     case ModelShape::mesh: {
       const AABB local = d.mesh->bounds();
-      p.box = {transform_point(w, local.center), local.half_extents * w.scale, p.rot};
+      p.box = {transform_point(w, local.center), local.half_extents * w.scale, rot};
       centre = p.box.center;
-      half = aabb_half_extents(p.rot, p.box.half_extents);
+      half = aabb_half_extents(rot, p.box.half_extents);
       break;
     }
     case ModelShape::plane: {
-      const vec3 n = d.plane.normal * p.rot;
-      p.plane = {n, d.plane.distance * w.scale + dot(n, w.position)};
+      const vec3 n = d.plane.normal * rot;
+      const Plane plane{n, d.plane.distance * w.scale + dot(n, w.position)};
+      p.set_plane(plane);
       p.bounds = {{0.0f, 0.0f, 0.0f}, {kInf, kInf, kInf}};
-      p.placed = gyro::is_finite(p.plane.normal) && detail::is_finite(p.plane.distance) && gyro::is_finite(w.position);
+      p.placed = gyro::is_finite(plane.normal) && detail::is_finite(plane.distance) && gyro::is_finite(w.position);
       return p;
     }
   }
   p.bounds = padded_bounds(centre, half);
-  const vec3 lo = aabb_min(p.bounds), hi = aabb_max(p.bounds);
-  p.lo[0] = lo.x, p.lo[1] = lo.y, p.lo[2] = lo.z, p.hi[0] = hi.x, p.hi[1] = hi.y, p.hi[2] = hi.z;
   const float q[4] = {w.rotation.x, w.rotation.y, w.rotation.z, w.rotation.w};
   bool ok = gyro::is_finite(w.position) && detail::is_finite(w.scale) && gyro::is_finite(half) && gyro::is_finite(aabb_min(p.bounds)) &&
             gyro::is_finite(aabb_max(p.bounds)) && gyro::is_finite(p.bounds.half_extents);
@@ -403,8 +417,8 @@ struct Scene::Impl {
     octree.clear();
     std::vector<detail::BvhBox> boxes(tree_slots.size());
     for (std::size_t k = 0; k < tree_slots.size(); ++k) {
-      const Placed& p = placed[tree_slots[k]];
-      boxes[k] = {{p.lo[0], p.lo[1], p.lo[2]}, {p.hi[0], p.hi[1], p.hi[2]}};
+      const Corners c(placed[tree_slots[k]]);
+      boxes[k] = {{c.lo[0], c.lo[1], c.lo[2]}, {c.hi[0], c.hi[1], c.hi[2]}};
     }
     slot_item.clear();  // refit_bvh() refits only a tree linked when it was built
     if (built == SceneAccel::bvh) {
@@ -450,7 +464,8 @@ struct Scene::Impl {
     }
     const bool ok = links.refit(bvh, [&](uint32_t item, float lo[3], float hi[3]) {
       const Placed& p = placed[tree_slots[item]];
-      for (int a = 0; a < 3; ++a) lo[a] = p.lo[a], hi[a] = p.hi[a];
+      const Corners c(p);
+      for (int a = 0; a < 3; ++a) lo[a] = c.lo[a], hi[a] = c.hi[a];
     });
     if (ok && bvh.stats.sah_cost <= kSceneRefitCost * built_sah) links.each_marked_leaf([&](uint32_t l) { write_ray_leaf(l); });
     links.clear_marks();
@@ -483,10 +498,10 @@ struct Scene::Impl {
       r.key[k] = item == detail::kNoItem ? detail::kNoItem : placed[tree_slots[item]].index;
       const Placed* p = item == detail::kNoItem ? nullptr : &placed[tree_slots[item]];
       const bool sphere = p && p->shape == ModelShape::sphere;
-      r.sphere[0][k] = sphere ? p->sphere.center.x : nan;
-      r.sphere[1][k] = sphere ? p->sphere.center.y : nan;
-      r.sphere[2][k] = sphere ? p->sphere.center.z : nan;
-      r.sphere[3][k] = sphere ? p->sphere.radius : nan;
+      r.sphere[0][k] = sphere ? p->box.center.x : nan;  // Placed::sphere()'s fields
+      r.sphere[1][k] = sphere ? p->box.center.y : nan;
+      r.sphere[2][k] = sphere ? p->box.center.z : nan;
+      r.sphere[3][k] = sphere ? p->box.half_extents.x : nan;
       if (p && p->shape == ModelShape::box) {
         const OBB& b = p->box;
         const mat3& o = b.orientation;
@@ -532,7 +547,8 @@ struct Scene::Impl {
   // box_ok(lo, hi).
   template <class BoxOk, class Leaf> void walk(BoxOk&& box_ok, Leaf&& leaf) const {
     const auto visit = [&](uint32_t slot) {
-      if (box_ok(placed[slot].lo, placed[slot].hi)) leaf(slot);
+      const Corners c(placed[slot]);
+      if (box_ok(c.lo, c.hi)) leaf(slot);
     };
     uint32_t stack[kStackSize];
     int sp = 0;
@@ -682,9 +698,10 @@ Status Scene::model(ModelId id, ModelInfo* out) const {
   ModelInfo info;
   info.def = m.defs[s];
   info.world = p.world;
-  info.sphere = p.sphere;
-  info.box = p.box;
-  info.plane = p.plane;
+  // Only the model's own kind; the others keep their defaults.
+  if (p.shape == ModelShape::sphere) info.sphere = p.sphere();
+  if (p.shape == ModelShape::box || p.shape == ModelShape::mesh) info.box = p.box;
+  if (p.shape == ModelShape::plane) info.plane = p.plane();
   info.bounds = p.bounds;
   info.placed = p.placed;
   *out = std::move(info);
@@ -777,7 +794,8 @@ class RayWalk {
   // test, a mesh's range cut to the best t so far (closest hit). +inf when not hit.
   float exact_t(uint32_t slot, float best_t, float limit, SceneHit* out) const {
     const Placed& p = m_.placed[slot];
-    if (!(enter(p.lo, p.hi, limit) < kInf)) return kInf;
+    const Corners c(p);
+    if (!(enter(c.lo, c.hi, limit) < kInf)) return kInf;
     *out = hit_of(slot, best_t < kInf && !any_ ? std::min(tmax_, best_t) : tmax_);
     return out->hit.hit ? out->hit.t : kInf;
   }
@@ -787,16 +805,16 @@ class RayWalk {
     const Placed& p = m_.placed[slot];
     SceneHit h;
     switch (p.shape) {
-      case ModelShape::sphere: h.hit = raycast(p.sphere, ray_, tmin_, tmax_); break;
+      case ModelShape::sphere: h.hit = raycast(p.sphere(), ray_, tmin_, tmax_); break;
       case ModelShape::box: h.hit = raycast(p.box, ray_, tmin_, tmax_); break;
-      case ModelShape::plane: h.hit = raycast(p.plane, ray_, tmin_, tmax_); break;
+      case ModelShape::plane: h.hit = raycast(p.plane(), ray_, tmin_, tmax_); break;
       case ModelShape::mesh: {
         const MeshHit mh = raycast(*p.mesh, to_local(p.world, ray_), tmin_, mesh_tmax);
         if (!mh.hit.hit) return h;
         h.hit.hit = true;
         h.hit.t = mh.hit.t;
         h.hit.point = ray_.origin + ray_.direction * mh.hit.t;
-        h.hit.normal = mh.hit.normal * p.rot;
+        h.hit.normal = mh.hit.normal * p.box.orientation;
         h.primitive = mh.triangle;
         h.u = mh.u, h.v = mh.v;
         break;
@@ -930,7 +948,7 @@ void trace_block(const Scene::Impl& m, const RaysView& rays, std::size_t begin, 
       } else if (const Placed& p = m.placed[slot]; p.shape != ModelShape::mesh) {
         out[k] = SceneHit{};
         if (!details) out[k].hit.hit = true, out[k].hit.t = best_t[k];
-        else out[k].hit = p.shape == ModelShape::sphere ? detail::raycast_at(p.sphere, b.ray(k), best_t[k])
+        else out[k].hit = p.shape == ModelShape::sphere ? detail::raycast_at(p.sphere(), b.ray(k), best_t[k])
                                                          : detail::raycast_at(p.box, b.ray(k), best_t[k]);
         out[k].model = id_of(m.pool.id_at(slot));
       } else {
@@ -1043,9 +1061,9 @@ Status check_obb(const OBB& b) {
 // region around it; the three shape queries share it.
 template <class Shape> bool model_overlaps(const Shape& q, const Placed& p) {
   switch (p.shape) {
-    case ModelShape::sphere: return overlaps(q, p.sphere);
+    case ModelShape::sphere: return overlaps(q, p.sphere());
     case ModelShape::box: return overlaps(q, p.box);
-    case ModelShape::plane: return overlaps(q, p.plane);
+    case ModelShape::plane: return overlaps(q, p.plane());
     case ModelShape::mesh: return overlaps(*p.mesh, to_local(p.world, q));
   }
   return false;
@@ -1107,10 +1125,10 @@ Status query(const Scene& scene, const Frustum& f, std::vector<ModelId>& out) {
       scene, [&](const float lo[3], const float hi[3]) { return detail::frustum_may_touch(f, lo, hi); },
       [&](const Placed& p) {
         switch (p.shape) {
-          case ModelShape::sphere: return intersects(f, p.sphere);
+          case ModelShape::sphere: return intersects(f, p.sphere());
           case ModelShape::box:
           case ModelShape::mesh: return intersects(f, p.box);
-          case ModelShape::plane: return plane_touches(f, p.plane);
+          case ModelShape::plane: return plane_touches(f, p.plane());
         }
         return false;
       },
