@@ -117,8 +117,9 @@ Status check_shape(const ModelDef& d) {
 
 // A model's world placement: what every query reads (dense, by slot). One OBB holds the
 // world shape of every kind (a sphere's centre and radius, a plane's normal and distance,
-// in its first fields), so a model costs 160 bytes here, not the 232 of a field per kind
-// and a rotation matrix (which equals a box's orientation).
+// in its first fields), and the tree's corners are computed from the bounds (Corners), so a
+// model costs 136 bytes here, not the 232 of a field per kind, a rotation matrix (which
+// equals a box's orientation) and the corners stored beside the bounds.
 struct Placed {
   ModelShape shape = ModelShape::sphere;
   uint32_t index = 0;  // the id's index: the tie-break of every query
