@@ -112,6 +112,12 @@ struct BoxUnion {
   }
 };
 
+/// The expected cost of a random ray through a tree with these half areas (the nodes' boxes
+/// and the leaf blocks', in index order, node 0 the root): every node and leaf block tested
+/// with the probability of its area over the root's, summed nodes first. The build's
+/// BvhStats::sah_cost and a refit's (bvh_refit.hpp) both come from here.
+double sah_cost(const double* node_area, std::size_t nodes, const double* leaf_area, std::size_t leaves);
+
 /// A node whose slots are all empty: bounds (+inf, -inf), which no slab test enters.
 BvhNode8 empty_node8();
 /// Sets node.order from its children's bounds (the builder's rule: for each octant, the slots

@@ -237,7 +237,6 @@ class Builder {
     Out out;
     const Bounds& rb = nodes_[root].box;
     out.bounds = aabb_from_min_max({rb.lo[0], rb.lo[1], rb.lo[2]}, {rb.hi[0], rb.hi[1], rb.hi[2]});
-    const double root_area = std::max(rb.half_area(), 1e-300);
     // The root is always a wide node, even over a single leaf, so traversal has one shape.
     // Below kSplitDepth the layout is placed in parallel, one subtree per layout.
     Layout top;
@@ -264,18 +263,18 @@ class Builder {
     // of the build's serial time on two threads).
     out.nodes.resize(node_count);
     out.leaves.resize(leaf_count);
-    std::vector<double> node_term(node_count), leaf_term(leaf_count);  // their shares of the SAH cost
+    std::vector<double> node_area(node_count), leaf_area(leaf_count);  // for the SAH cost
     const auto write_node = [&](const Wide& w, uint32_t at, const uint32_t* codes) {
       Node node = empty_node<Node>();
       for (uint32_t j = 0; j < w.n; ++j) set_child(node, int(j), nodes_[w.kid[j]].box, codes[j]);
       set_orders(node);
       out.nodes[at] = node;
-      node_term[at] = nodes_[w.self].box.half_area() / root_area;
+      node_area[at] = nodes_[w.self].box.half_area();
     };
     const auto write_leaf = [&](uint32_t binary, uint32_t at) {
       const BinaryNode& b = nodes_[binary];
       leaf(out.leaves[at], order_.data() + b.first, b.count);
-      leaf_term[at] = b.box.half_area() / root_area;
+      leaf_area[at] = b.box.half_area();
     };
     parallel_for(sub.size() + 1, 1, [&](std::size_t b, std::size_t e) {
       for (std::size_t d = b; d < e; ++d) {
@@ -296,22 +295,13 @@ class Builder {
         for (std::size_t k = 0; k < l.leaf.size(); ++k) write_leaf(l.leaf[k], l.leaf_base + uint32_t(k));
       }
     });
-    // The expected cost of a random ray: node tests, then leaf block tests, each in index
-    // order (a root over a single leaf counts 1).
-    double sah = 0.0;
-    if (nodes_[root].count > 0) {
-      sah = leaf_term[0] + 1.0;
-    } else {
-      for (double t : node_term) sah += t;
-      for (double t : leaf_term) sah += t;
-    }
     std::size_t depth = top.max_depth;
     for (const Layout& l : sub) depth = std::max(depth, l.max_depth);
     out.stats.nodes = out.nodes.size();
     out.stats.leaves = out.leaves.size();
     out.stats.max_depth = depth;
     out.stats.bytes = out.nodes.size() * sizeof(out.nodes[0]) + out.leaves.size() * sizeof(out.leaves[0]);
-    out.stats.sah_cost = sah;
+    out.stats.sah_cost = sah_cost(node_area.data(), node_area.size(), leaf_area.data(), leaf_area.size());
     return out;
   }
 
@@ -687,6 +677,15 @@ void box_leaf(BvhItems4& leaf, const uint32_t* items, uint32_t count) {
 }  // namespace
 
 BvhNode8 empty_node8() { return empty_node<BvhNode8>(); }
+
+double sah_cost(const double* node_area, std::size_t nodes, const double* leaf_area, std::size_t leaves) {
+  if (nodes == 0) return 0.0;
+  const double root = std::max(node_area[0], 1e-300);
+  double sah = 1.0;  // the root, always tested (node_area[0] / root, but also for a flat root)
+  for (std::size_t i = 1; i < nodes; ++i) sah += node_area[i] / root;
+  for (std::size_t i = 0; i < leaves; ++i) sah += leaf_area[i] / root;
+  return sah;
+}
 void set_child_orders(BvhNode8& node) { set_orders(node); }
 
 Bvh8 build_bvh8(const MeshData& mesh) {

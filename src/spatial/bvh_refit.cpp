@@ -88,15 +88,8 @@ std::size_t BvhRefit::bytes() const {
          (node_area_.capacity() + leaf_area_.capacity()) * sizeof(double) + node_mark_.capacity() + leaf_mark_.capacity();
 }
 
-// The build's formula (bvh_build.cpp): every node's and leaf block's half area over the
-// root's, summed in index order, nodes first.
 double BvhRefit::sah_cost() const {
-  if (node_area_.empty()) return 0.0;
-  const double root = std::max(node_area_[0], 1e-300);
-  double sah = 0.0;
-  for (double a : node_area_) sah += a / root;
-  for (double a : leaf_area_) sah += a / root;
-  return sah;
+  return detail::sah_cost(node_area_.data(), node_area_.size(), leaf_area_.data(), leaf_area_.size());
 }
 
 }  // namespace gyro::detail

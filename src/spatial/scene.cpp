@@ -468,9 +468,10 @@ struct Scene::Impl {
       const Corners c(p);
       for (int a = 0; a < 3; ++a) lo[a] = c.lo[a], hi[a] = c.hi[a];
     });
-    if (ok && bvh.stats.sah_cost <= kSceneRefitCost * built_sah) links.each_marked_leaf([&](uint32_t l) { write_ray_leaf(l); });
+    const bool keep = ok && bvh.stats.sah_cost <= kSceneRefitCost * built_sah;
+    if (keep) links.each_marked_leaf([&](uint32_t l) { write_ray_leaf(l); });
     links.clear_marks();
-    return ok && bvh.stats.sah_cost <= kSceneRefitCost * built_sah;
+    return keep;
   }
 
   // Each leaf's spheres and boxes as lanes for the ray kernel; meshes go to the exact test.
