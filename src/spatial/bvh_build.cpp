@@ -119,28 +119,63 @@ template <class Node> Node empty_node() {
 }
 
 // BvhNode8::order: for each octant, the slots sorted by their centres along its diagonal
-// (lo + hi in binary64, exact for floats, so the order is a function of the bounds alone).
+// (lo + hi in binary64, exact for floats, so the order is a function of the bounds alone):
+// slot k's key for octant o is ((0 + s_x c_x) + s_y c_y) + s_z c_z, with s_a = -1 where bit
+// a of o is set, +inf for an empty slot; ties go to the lower slot.
+//
+// A refit writes the orders of every node it changes, and eight insertion sorts that each
+// recomputed every key were half of a scene's refit (R1M, a tenth moved: 1.8 M of 3.1 M
+// instructions a frame). So the centres are summed once, and the keys are compared only for
+// the four octants with a positive z: octant 7 - o has every sign flipped, and round to
+// nearest is symmetric (fl(-a - b) = -fl(a + b)), so its keys are exactly the negated ones,
+// and one comparison of two keys places both slots in both octants. A slot's place is a
+// count (no branch on the keys: on the scene refit's unpredictable orders this ran 4% faster
+// than two insertion sorts per pair, tests/spatial/bvh_refit_test.cpp holds both to the
+// definition above); the empty slots come last, in slot order.
 inline void set_orders(BvhNode8& n) {
-  for (int o = 0; o < 8; ++o) {
-    double key[8];
-    int slot[8];
-    for (int k = 0; k < 8; ++k) {
-      key[k] = kInf;
-      if (n.child[k] != kEmptyChild) {
-        key[k] = 0.0;
-        for (int a = 0; a < 3; ++a) {
-          const double c = double(n.bounds[2 * a][k]) + double(n.bounds[2 * a + 1][k]);
-          key[k] += o >> a & 1 ? -c : c;
-        }
-      }
-      int j = k;
-      while (j > 0 && key[slot[j - 1]] > key[k]) slot[j] = slot[j - 1], --j;
-      slot[j] = k;
+  double c[3][8];
+  int used[8], m = 0;
+  uint32_t empties = 0;  // the empty slots' nibbles, last in every order, in slot order
+  for (int k = 0, e = 0; k < 8; ++k) {
+    if (n.child[k] == kEmptyChild) {
+      empties |= uint32_t(k) << (4 * e++);
+      continue;
     }
-    uint32_t packed = 0;
-    for (int j = 0; j < 8; ++j) packed |= uint32_t(slot[j]) << (4 * j);
-    n.order[o] = packed;
+    used[m++] = k;
+    for (int a = 0; a < 3; ++a) c[a][k] = double(n.bounds[2 * a][k]) + double(n.bounds[2 * a + 1][k]);
   }
+  if (m < 8) empties <<= 4 * m;  // with none empty, a shift by 32 would be undefined
+  // Octant O (bit 2 clear) and 7 - O; the signs are constants of each instance. A slot's
+  // place in O: the keys below its own plus the equal ones of lower slots; in 7 - O: the
+  // keys above its own plus, again, the equal ones of lower slots.
+  const auto octant = [&]<int O>() {
+    double key[8];
+    for (int i = 0; i < m; ++i) {
+      const int k = used[i];
+      double v = 0.0;
+      v += O & 1 ? -c[0][k] : c[0][k];
+      v += O & 2 ? -c[1][k] : c[1][k];
+      v += c[2][k];
+      key[i] = v;
+    }
+    int below[8] = {}, equal_before[8] = {}, equal_after[8] = {};
+    for (int j = 0; j < m; ++j)
+      for (int i = j + 1; i < m; ++i) {
+        const int lt = key[j] < key[i], gt = key[j] > key[i], eq = 1 - lt - gt;
+        below[i] += lt, below[j] += gt, equal_before[i] += eq, equal_after[j] += eq;
+      }
+    uint32_t front = empties, back = empties;
+    for (int i = 0; i < m; ++i) {
+      const int above = m - 1 - below[i] - equal_before[i] - equal_after[i];
+      front |= uint32_t(used[i]) << (4 * (below[i] + equal_before[i]));
+      back |= uint32_t(used[i]) << (4 * (above + equal_before[i]));
+    }
+    n.order[O] = front, n.order[7 - O] = back;
+  };
+  octant.template operator()<0>();
+  octant.template operator()<1>();
+  octant.template operator()<2>();
+  octant.template operator()<3>();
 }
 
 double blocks(uint32_t n) { return double((n + kLeafSize - 1) / kLeafSize); }

@@ -23,6 +23,8 @@ void BvhRefit::link(const BoxBvh8& bvh, std::size_t items) {
   node_area_.assign(nodes, 0.0);
   leaf_area_.assign(leaves, 0.0);
   node_mark_.assign(nodes, 0);
+  node_box_.assign(nodes, BoxUnion{});
+  node_changed_.assign(nodes, 0);
   leaf_mark_.assign(leaves, 0);
   marked_nodes_.clear();
   marked_leaves_.clear();
@@ -85,7 +87,8 @@ void BvhRefit::clear_marks() {
 std::size_t BvhRefit::bytes() const {
   return (item_leaf_.capacity() + leaf_parent_.capacity() + node_parent_.capacity() + marked_nodes_.capacity() +
           marked_leaves_.capacity()) * sizeof(uint32_t) +
-         (node_area_.capacity() + leaf_area_.capacity()) * sizeof(double) + node_mark_.capacity() + leaf_mark_.capacity();
+         (node_area_.capacity() + leaf_area_.capacity()) * sizeof(double) + node_mark_.capacity() + leaf_mark_.capacity() +
+         node_box_.capacity() * sizeof(BoxUnion) + node_changed_.capacity();
 }
 
 double BvhRefit::sah_cost() const {

@@ -13,6 +13,7 @@
 
 #include "spatial/bvh.hpp"
 
+#include <bit>
 #include <cstdint>
 #include <vector>
 
@@ -38,34 +39,50 @@ class BvhRefit {
   }
 
   /// Recomputes the marked nodes' slot boxes, children before parents (the build numbers
-  /// nodes depth first, so a child's index is above its parent's), each leaf slot from
-  /// box(item, lo, hi), then their octant orders, the tree's bounds and its expected ray cost
-  /// (the build's formula). False when the numbering is not the build's: the caller then
-  /// rebuilds, which overwrites whatever this wrote. The marks stay for each_marked_leaf()
-  /// until clear_marks().
+  /// nodes depth first, so a child's index is above its parent's), each marked leaf slot
+  /// from box(item, lo, hi) and each marked node slot from that child's new box, then the
+  /// octant orders of the nodes whose slots changed, the tree's bounds and its expected ray
+  /// cost (the build's formula). False when the numbering is not the build's: the caller
+  /// then rebuilds, which overwrites whatever this wrote. The marks stay for
+  /// each_marked_leaf() until clear_marks().
+  ///
+  /// A slot whose child is not marked already holds that child's box, and a node none of
+  /// whose slots changed keeps its box, area and orders (a function of the slots alone): the
+  /// bytes of recomputing everything, without the work. Most of a node's slots are unmarked
+  /// when few models moved, and the orders were half of a refit's work.
   template <class BoxOf> bool refit(BoxBvh8& bvh, BoxOf&& box) {
     for (std::size_t i = bvh.nodes.size(); i-- > 0;) {
       if (!node_mark_[i]) continue;
       BvhNode8& n = bvh.nodes[i];
-      BoxUnion own;
+      bool changed = false;
       for (int k = 0; k < 8; ++k) {
         const uint32_t code = n.child[k];
         if (code == kEmptyChild) continue;
         BoxUnion slot;
         if (code & kLeafBit) {
           const uint32_t l = code & ~kLeafBit;
+          if (!leaf_mark_[l]) continue;
           float lo[3], hi[3];
           for (uint32_t item : bvh.leaves[l].item)
             if (item != kNoItem) box(item, lo, hi), slot.grow(lo, hi);
           leaf_area_[l] = slot.half_area();
         } else {
           if (code <= i) return false;
-          slot = slots_of(bvh.nodes[code]);
+          if (!node_mark_[code] || !node_changed_[code]) continue;
+          slot = node_box_[code];
         }
-        for (int a = 0; a < 3; ++a) n.bounds[2 * a][k] = slot.lo[a], n.bounds[2 * a + 1][k] = slot.hi[a];
-        own.grow(slot.lo, slot.hi);
+        for (int a = 0; a < 3; ++a) {
+          float& lo = n.bounds[2 * a][k];
+          float& hi = n.bounds[2 * a + 1][k];
+          changed = changed || !same_bits(lo, slot.lo[a]) || !same_bits(hi, slot.hi[a]);
+          lo = slot.lo[a], hi = slot.hi[a];
+        }
       }
+      node_changed_[i] = changed;
+      if (!changed) continue;
       set_child_orders(n);
+      const BoxUnion own = slots_of(n);
+      node_box_[i] = own;
       node_area_[i] = own.half_area();
       if (i == 0) bvh.bounds = aabb_from_min_max({own.lo[0], own.lo[1], own.lo[2]}, {own.hi[0], own.hi[1], own.hi[2]});
     }
@@ -80,11 +97,16 @@ class BvhRefit {
  private:
   std::vector<uint32_t> item_leaf_, leaf_parent_, node_parent_;
   std::vector<double> node_area_, leaf_area_;
+  // Written by refit() for each marked node, read by its parent in the same pass: the
+  // node's new box, and whether any of its slots changed.
+  std::vector<BoxUnion> node_box_;
+  std::vector<uint8_t> node_changed_;
   std::vector<uint8_t> node_mark_, leaf_mark_;
   std::vector<uint32_t> marked_nodes_, marked_leaves_;  // what clear_marks() resets
   bool all_marked_ = false;
 
   static BoxUnion slots_of(const BvhNode8& node);
+  static bool same_bits(float a, float b) { return std::bit_cast<uint32_t>(a) == std::bit_cast<uint32_t>(b); }
   double sah_cost() const;
 };
 

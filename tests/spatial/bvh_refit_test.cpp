@@ -1,0 +1,187 @@
+// The octant orders and the partial refit against their definitions: the orders as eight
+// independent insertion sorts (the rule bvh.hpp states), and a refit of the marked nodes as
+// every node recomputed from its items, compared to the byte. Both the build and the refit
+// take their shortcuts (one sort per pair of opposite octants; slots whose child did not move,
+// nodes whose slots did not change) on the claim that they give these bytes.
+#include "spatial/bvh.hpp"
+#include "spatial/bvh_refit.hpp"
+#include "workloads.hpp"
+
+#include <gtest/gtest.h>
+
+#include <bit>
+#include <cstring>
+#include <vector>
+
+namespace gyro {
+namespace {
+
+using detail::BvhNode8;
+using testing::SplitMix64;
+
+// BvhNode8::order by its definition: per octant, slots by the key ((0 + s_x c_x) + s_y c_y)
+// + s_z c_z (c = lo + hi in binary64, s_a = -1 where octant bit a is set), empty slots as
+// +inf, stable in slot order.
+void reference_orders(BvhNode8& n) {
+  for (int o = 0; o < 8; ++o) {
+    double key[8];
+    int slot[8];
+    for (int k = 0; k < 8; ++k) {
+      key[k] = __builtin_inf();
+      if (n.child[k] != detail::kEmptyChild) {
+        key[k] = 0.0;
+        for (int a = 0; a < 3; ++a) {
+          const double c = double(n.bounds[2 * a][k]) + double(n.bounds[2 * a + 1][k]);
+          key[k] += o >> a & 1 ? -c : c;
+        }
+      }
+      int j = k;
+      while (j > 0 && key[slot[j - 1]] > key[k]) slot[j] = slot[j - 1], --j;
+      slot[j] = k;
+    }
+    uint32_t packed = 0;
+    for (int j = 0; j < 8; ++j) packed |= uint32_t(slot[j]) << (4 * j);
+    n.order[o] = packed;
+  }
+}
+
+TEST(BvhOrders, EqualEightIndependentSorts) {
+  SplitMix64 rng(41);
+  std::size_t checked = 0, with_ties = 0;
+  for (int it = 0; it < 60000; ++it) {
+    BvhNode8 n = detail::empty_node8();
+    // Few distinct values make ties in some octants and not in their opposite's; wide ranges
+    // make sums that round.
+    const int kind = it % 4;
+    for (int k = 0; k < 8; ++k) {
+      if (rng.next() % 4 == 0) continue;  // empty
+      for (int a = 0; a < 3; ++a) {
+        float lo, hi;
+        if (kind == 0) lo = float(int(rng.next() % 3) - 1), hi = lo + float(rng.next() % 3);
+        else if (kind == 1) lo = float(rng.u() - 0.5) * 1e-3f, hi = lo + float(rng.u()) * 1e30f;
+        else if (kind == 2) lo = float(rng.u() * 1e6), hi = lo + float(rng.u());
+        else lo = -0.0f, hi = rng.next() % 2 ? 0.0f : float(rng.u());
+        n.bounds[2 * a][k] = lo, n.bounds[2 * a + 1][k] = hi;
+      }
+      n.child[k] = uint32_t(k);
+    }
+    BvhNode8 ref = n;
+    detail::set_child_orders(n);
+    reference_orders(ref);
+    for (int o = 0; o < 8; ++o) ASSERT_EQ(n.order[o], ref.order[o]) << "node " << it << " octant " << o;
+    ++checked;
+    with_ties += kind == 0 || kind == 3;
+  }
+  EXPECT_EQ(checked, 60000u);
+  EXPECT_GT(with_ties, 20000u);
+}
+
+struct Item {
+  float lo[3], hi[3];
+};
+
+Item random_item(SplitMix64& rng) {
+  Item b;
+  for (int a = 0; a < 3; ++a) {
+    const float c = float(rng.u() * 100.0), h = float(0.1 + rng.u());
+    b.lo[a] = c - h, b.hi[a] = c + h;
+  }
+  return b;
+}
+
+// Every node of `bvh` recomputed from the items, children before parents: slots, orders,
+// bounds and the expected ray cost, as a refit of the whole tree defines them.
+void recompute_all(detail::BoxBvh8& bvh, const std::vector<Item>& items) {
+  std::vector<double> node_area(bvh.nodes.size()), leaf_area(bvh.leaves.size());
+  for (std::size_t i = bvh.nodes.size(); i-- > 0;) {
+    BvhNode8& n = bvh.nodes[i];
+    detail::BoxUnion own;
+    for (int k = 0; k < 8; ++k) {
+      const uint32_t code = n.child[k];
+      if (code == detail::kEmptyChild) continue;
+      detail::BoxUnion slot;
+      if (code & detail::kLeafBit) {
+        for (uint32_t item : bvh.leaves[code & ~detail::kLeafBit].item)
+          if (item != detail::kNoItem) slot.grow(items[item].lo, items[item].hi);
+        leaf_area[code & ~detail::kLeafBit] = slot.half_area();
+      } else {
+        const BvhNode8& c = bvh.nodes[code];
+        for (int j = 0; j < 8; ++j) {
+          if (c.child[j] == detail::kEmptyChild) continue;
+          const float l[3] = {c.bounds[0][j], c.bounds[2][j], c.bounds[4][j]};
+          const float h[3] = {c.bounds[1][j], c.bounds[3][j], c.bounds[5][j]};
+          slot.grow(l, h);
+        }
+      }
+      for (int a = 0; a < 3; ++a) n.bounds[2 * a][k] = slot.lo[a], n.bounds[2 * a + 1][k] = slot.hi[a];
+      own.grow(slot.lo, slot.hi);
+    }
+    reference_orders(n);
+    node_area[i] = own.half_area();
+  }
+  bvh.stats.sah_cost = detail::sah_cost(node_area.data(), node_area.size(), leaf_area.data(), leaf_area.size());
+}
+
+TEST(BvhRefit, MarkedNodesEqualEveryNodeRecomputed) {
+  SplitMix64 rng(43);
+  const std::size_t n = 3000;
+  std::vector<Item> items(n);
+  for (Item& b : items) b = random_item(rng);
+  std::vector<detail::BvhBox> boxes(n);
+  for (std::size_t i = 0; i < n; ++i)
+    for (int a = 0; a < 3; ++a) boxes[i].lo[a] = items[i].lo[a], boxes[i].hi[a] = items[i].hi[a];
+  detail::BoxBvh8 bvh = detail::build_box_bvh8(boxes.data(), n);
+  detail::BvhRefit links;
+  links.link(bvh, n);
+  std::size_t unchanged_rounds = 0;
+  for (int round = 0; round < 40; ++round) {
+    // Round sizes from none to all; some moves keep the box (a leaf that does not change),
+    // some shrink it inside itself (a leaf that changes under a parent that may not).
+    const std::size_t moves = round % 8 == 0 ? 0 : round % 8 == 1 ? n : std::size_t(1) << (round % 8);
+    const bool all = moves == n;
+    for (std::size_t m = 0; m < moves; ++m) {
+      const std::size_t i = all ? m : rng.next() % n;
+      const uint64_t how = rng.next() % 3;
+      if (how == 1) items[i] = random_item(rng);
+      if (how == 2)
+        for (int a = 0; a < 3; ++a) {
+          const float c = 0.5f * (items[i].lo[a] + items[i].hi[a]);
+          items[i].lo[a] = 0.5f * (items[i].lo[a] + c), items[i].hi[a] = 0.5f * (items[i].hi[a] + c);
+        }
+      if (!all) links.mark_item(uint32_t(i));
+    }
+    if (all) links.mark_all();
+    const std::vector<BvhNode8> before(bvh.nodes.begin(), bvh.nodes.end());
+    detail::BoxBvh8 ref;
+    ref.nodes.assign(bvh.nodes.begin(), bvh.nodes.end());
+    ref.leaves.assign(bvh.leaves.begin(), bvh.leaves.end());
+    recompute_all(ref, items);
+    ASSERT_TRUE(links.refit(bvh, [&](uint32_t item, float lo[3], float hi[3]) {
+      for (int a = 0; a < 3; ++a) lo[a] = items[item].lo[a], hi[a] = items[item].hi[a];
+    }));
+    links.clear_marks();
+    ASSERT_EQ(bvh.nodes.size(), ref.nodes.size());
+    for (std::size_t i = 0; i < bvh.nodes.size(); ++i)
+      ASSERT_EQ(std::memcmp(&bvh.nodes[i], &ref.nodes[i], sizeof(BvhNode8)), 0) << "round " << round << " node " << i;
+    EXPECT_EQ(std::bit_cast<uint64_t>(bvh.stats.sah_cost), std::bit_cast<uint64_t>(ref.stats.sah_cost)) << round;
+    const detail::BoxUnion root = [&] {
+      detail::BoxUnion u;
+      for (int j = 0; j < 8; ++j)
+        if (ref.nodes[0].child[j] != detail::kEmptyChild) {
+          const float l[3] = {ref.nodes[0].bounds[0][j], ref.nodes[0].bounds[2][j], ref.nodes[0].bounds[4][j]};
+          const float h[3] = {ref.nodes[0].bounds[1][j], ref.nodes[0].bounds[3][j], ref.nodes[0].bounds[5][j]};
+          u.grow(l, h);
+        }
+      return u;
+    }();
+    const AABB want = aabb_from_min_max({root.lo[0], root.lo[1], root.lo[2]}, {root.hi[0], root.hi[1], root.hi[2]});
+    EXPECT_EQ(std::memcmp(&bvh.bounds, &want, sizeof(AABB)), 0) << round;
+    unchanged_rounds += std::memcmp(before.data(), bvh.nodes.data(), before.size() * sizeof(BvhNode8)) == 0;
+  }
+  // Rounds with no move leave every byte; the others change some.
+  EXPECT_GE(unchanged_rounds, 5u);
+  EXPECT_LT(unchanged_rounds, 40u);
+}
+
+}  // namespace
+}  // namespace gyro
