@@ -72,6 +72,21 @@ class EmbreeScene {
   /// its exit point, as BENCHMARKS.md's reference does.
   static std::unique_ptr<EmbreeScene> spheres(const testing::SphereSet& spheres, uint32_t build_threads,
                                               PeerBuild& build);
+  /// How a moving scene's commit (move_spheres) updates Embree's BVH: rebuild (the default
+  /// scene, RTC_BUILD_QUALITY_MEDIUM, built again), low (RTC_SCENE_FLAG_DYNAMIC, scene and
+  /// geometry RTC_BUILD_QUALITY_LOW: the fast rebuild Embree offers dynamic scenes) or refit
+  /// (RTC_SCENE_FLAG_DYNAMIC, scene RTC_BUILD_QUALITY_LOW, geometry RTC_BUILD_QUALITY_REFIT:
+  /// the BVH's topology kept and every node's box refit). Embree's two-level builder refits
+  /// triangles, quads, user geometry and instances, not sphere points (their refit commit
+  /// costs what a rebuild does), so `user` makes the spheres user geometry (a bounds and an
+  /// intersect callback), the way an Embree user moving spheres gets a refit.
+  enum class Update { rebuild, low, refit };
+  /// spheres() for a scene whose spheres move (move_spheres) and are committed with `update`.
+  static std::unique_ptr<EmbreeScene> moving_spheres(const testing::SphereSet& spheres, Update update, bool user,
+                                                     uint32_t build_threads, PeerBuild& build);
+  /// Moves sphere idx[k] to centre xyz[3k .. 3k+3) for k < n (untimed), then commits the
+  /// geometry and the scene; returns the commit's milliseconds.
+  double move_spheres(const uint32_t* idx, const float* xyz, std::size_t n);
   ~EmbreeScene();
   /// Closest hit (or any hit: EmbreeMethod) of rays [0, n) on [0, tmax], one ray per call or
   /// packets of 16 consecutive rays, on `threads` threads taking chunks of rays in turn.

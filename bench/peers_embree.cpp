@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <limits>
 #include <string>
 #include <thread>
@@ -27,8 +28,11 @@ struct EmbreeScene::Impl {
   std::vector<float> vertices;    // AoS, padded: Embree may read 16 bytes at the last vertex
   std::vector<uint32_t> indices;  // 3 per triangle, padded likewise
   std::atomic<int64_t> bytes{0}, peak{0};
+  RTCGeometry moving = nullptr;  // moving_spheres()' geometry, one reference held here
+  bool moving_user = false;      // whether it is user geometry (no vertex buffer)
 
   ~Impl() {
+    if (moving) rtcReleaseGeometry(moving);
     if (scene) rtcReleaseScene(scene);
     if (device) rtcReleaseDevice(device);
   }
@@ -175,6 +179,72 @@ std::unique_ptr<EmbreeScene> EmbreeScene::triangles(const MeshData& mesh, bool r
 
 std::unique_ptr<EmbreeScene> EmbreeScene::spheres(const testing::SphereSet& s, uint32_t build_threads,
                                                   PeerBuild& build) {
+  return moving_spheres(s, Update::rebuild, false, build_threads, build);
+}
+
+namespace {
+
+// User-geometry spheres: their float4 (x, y, z, r) in the scene's vertex copy.
+void sphere_bounds(const RTCBoundsFunctionArguments* args) {
+  const float* v = static_cast<const float*>(args->geometryUserPtr) + 4 * std::size_t(args->primID);
+  RTCBounds& b = *args->bounds_o;
+  b.lower_x = v[0] - v[3], b.lower_y = v[1] - v[3], b.lower_z = v[2] - v[3];
+  b.upper_x = v[0] + v[3], b.upper_y = v[1] + v[3], b.upper_z = v[2] + v[3];
+}
+
+// The roots of ray i against sphere v (float4 x, y, z, r), in binary64 like R1's reference;
+// false when it misses the sphere's line. o: the origin relative to the centre.
+bool sphere_roots(const float* v, RTCRayN* ray, unsigned N, unsigned i, double o[3], double d[3], float& t0, float& t1) {
+  o[0] = RTCRayN_org_x(ray, N, i) - double(v[0]), o[1] = RTCRayN_org_y(ray, N, i) - double(v[1]);
+  o[2] = RTCRayN_org_z(ray, N, i) - double(v[2]);
+  d[0] = RTCRayN_dir_x(ray, N, i), d[1] = RTCRayN_dir_y(ray, N, i), d[2] = RTCRayN_dir_z(ray, N, i);
+  const double a = d[0] * d[0] + d[1] * d[1] + d[2] * d[2], b = o[0] * d[0] + o[1] * d[1] + o[2] * d[2];
+  const double c = o[0] * o[0] + o[1] * o[1] + o[2] * o[2] - double(v[3]) * v[3];
+  const double disc = b * b - a * c;
+  if (!(disc >= 0.0)) return false;
+  const double root = std::sqrt(disc);
+  t0 = float((-b - root) / a), t1 = float((-b + root) / a);
+  return true;
+}
+
+// The nearer root in [tnear, tfar], else the farther (a ray starting inside reports its
+// exit, as the sphere-point geometry does).
+void sphere_intersect(const RTCIntersectFunctionNArguments* args) {
+  const float* v = static_cast<const float*>(args->geometryUserPtr) + 4 * std::size_t(args->primID);
+  const unsigned N = args->N;
+  RTCRayN* ray = RTCRayHitN_RayN(args->rayhit, N);
+  RTCHitN* hit = RTCRayHitN_HitN(args->rayhit, N);
+  for (unsigned i = 0; i < N; ++i) {
+    double o[3], d[3];
+    float t0, t1;
+    if (!args->valid[i] || !sphere_roots(v, ray, N, i, o, d, t0, t1)) continue;
+    const float tnear = RTCRayN_tnear(ray, N, i), tfar = RTCRayN_tfar(ray, N, i);
+    const float t = t0 >= tnear && t0 <= tfar ? t0 : t1;
+    if (!(t >= tnear && t <= tfar)) continue;
+    RTCRayN_tfar(ray, N, i) = t;
+    for (unsigned k = 0; k < 3; ++k) (&RTCHitN_Ng_x(hit, N, i))[k * N] = float(o[k] + t * d[k]);
+    RTCHitN_u(hit, N, i) = 0.0f, RTCHitN_v(hit, N, i) = 0.0f;
+    RTCHitN_primID(hit, N, i) = args->primID, RTCHitN_geomID(hit, N, i) = args->geomID;
+    RTCHitN_instID(hit, N, i, 0) = args->context->instID[0];
+  }
+}
+
+void sphere_occluded(const RTCOccludedFunctionNArguments* args) {
+  const float* v = static_cast<const float*>(args->geometryUserPtr) + 4 * std::size_t(args->primID);
+  const unsigned N = args->N;
+  for (unsigned i = 0; i < N; ++i) {
+    double o[3], d[3];
+    float t0, t1;
+    if (!args->valid[i] || !sphere_roots(v, args->ray, N, i, o, d, t0, t1)) continue;
+    const float tnear = RTCRayN_tnear(args->ray, N, i), tfar = RTCRayN_tfar(args->ray, N, i);
+    if ((t0 >= tnear && t0 <= tfar) || (t1 >= tnear && t1 <= tfar)) RTCRayN_tfar(args->ray, N, i) = -INFINITY;
+  }
+}
+
+}  // namespace
+
+std::unique_ptr<EmbreeScene> EmbreeScene::moving_spheres(const testing::SphereSet& s, Update update, bool user,
+                                                         uint32_t build_threads, PeerBuild& build) {
   auto impl = new_device(build_threads);
   if (!impl) return nullptr;
   const std::size_t n = s.size();
@@ -185,11 +255,38 @@ std::unique_ptr<EmbreeScene> EmbreeScene::spheres(const testing::SphereSet& s, u
   impl->bytes = 0, impl->peak = 0;
   const auto start = std::chrono::steady_clock::now();
   impl->scene = rtcNewScene(impl->device);
-  RTCGeometry geom = rtcNewGeometry(impl->device, RTC_GEOMETRY_TYPE_SPHERE_POINT);
-  rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, impl->vertices.data(), 0,
-                             4 * sizeof(float), n);
-  if (!commit(*impl, geom, RTC_SCENE_FLAG_NONE, start, build)) return nullptr;
+  RTCGeometry geom = rtcNewGeometry(impl->device, user ? RTC_GEOMETRY_TYPE_USER : RTC_GEOMETRY_TYPE_SPHERE_POINT);
+  if (user) {
+    rtcSetGeometryUserPrimitiveCount(geom, unsigned(n));
+    rtcSetGeometryUserData(geom, impl->vertices.data());
+    rtcSetGeometryBoundsFunction(geom, sphere_bounds, nullptr);
+    rtcSetGeometryIntersectFunction(geom, sphere_intersect);
+    rtcSetGeometryOccludedFunction(geom, sphere_occluded);
+  } else {
+    rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, impl->vertices.data(), 0,
+                               4 * sizeof(float), n);
+  }
+  RTCSceneFlags flags = RTC_SCENE_FLAG_NONE;
+  if (update != Update::rebuild) {
+    flags = RTC_SCENE_FLAG_DYNAMIC;
+    rtcSetSceneBuildQuality(impl->scene, RTC_BUILD_QUALITY_LOW);
+    rtcSetGeometryBuildQuality(geom, update == Update::refit ? RTC_BUILD_QUALITY_REFIT : RTC_BUILD_QUALITY_LOW);
+  }
+  rtcRetainGeometry(geom);  // commit() gives up the creation's reference; move_spheres() keeps using it
+  impl->moving = geom, impl->moving_user = user;
+  if (!commit(*impl, geom, flags, start, build)) return nullptr;
   return std::unique_ptr<EmbreeScene>(new EmbreeScene(std::move(impl)));
+}
+
+double EmbreeScene::move_spheres(const uint32_t* idx, const float* xyz, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k)
+    for (int a = 0; a < 3; ++a) impl_->vertices[4 * std::size_t(idx[k]) + std::size_t(a)] = xyz[3 * k + std::size_t(a)];
+  const auto start = std::chrono::steady_clock::now();
+  // A user geometry has no vertex buffer: its commit alone marks it changed.
+  if (!impl_->moving_user) rtcUpdateGeometryBuffer(impl_->moving, RTC_BUFFER_TYPE_VERTEX, 0);
+  rtcCommitGeometry(impl_->moving);
+  rtcCommitScene(impl_->scene);
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
 void EmbreeScene::trace(const testing::RaySet& rays, std::size_t n, float tmax, EmbreeMethod method, uint32_t threads,
@@ -224,6 +321,11 @@ EmbreeScene::EmbreeScene(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 EmbreeScene::~EmbreeScene() = default;
 std::unique_ptr<EmbreeScene> EmbreeScene::triangles(const MeshData&, bool, uint32_t, PeerBuild&) { return nullptr; }
 std::unique_ptr<EmbreeScene> EmbreeScene::spheres(const testing::SphereSet&, uint32_t, PeerBuild&) { return nullptr; }
+std::unique_ptr<EmbreeScene> EmbreeScene::moving_spheres(const testing::SphereSet&, Update, bool, uint32_t,
+                                                         PeerBuild&) {
+  return nullptr;
+}
+double EmbreeScene::move_spheres(const uint32_t*, const float*, std::size_t) { return 0.0; }
 void EmbreeScene::trace(const testing::RaySet&, std::size_t n, float, EmbreeMethod, uint32_t, RayResults& out) const {
   out.resize(n);
 }
