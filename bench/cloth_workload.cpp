@@ -225,12 +225,6 @@ ClothPositions double_reference(int n, int substeps) {
 
 // ------------------------------------------------------------------ measuring
 
-double median(std::vector<double> v) {
-  if (v.empty()) return NAN;
-  std::sort(v.begin(), v.end());
-  return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
-}
-
 // Medians over reps of one engine and settings, and the last run's state. One warm-up run
 // first; when it alone takes more than the budget it is the only sample, otherwise as many
 // of `reps` as fit in the budget follow (at least one). `reps` reports what was used.

@@ -58,11 +58,6 @@ Script make_script(const testing::SphereSet& spheres, double fraction) {
   return s;
 }
 
-double median_of(std::vector<double> ms) {
-  std::sort(ms.begin(), ms.end());
-  return ms[ms.size() / 2];
-}
-
 struct Frames {
   Scene scene;
   double prepare_ms = 0;  // median per frame
@@ -93,7 +88,7 @@ void run_frames(Frames& f, const testing::SphereSet& spheres, bool refit, const 
     f.scene.prepare();
     ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - a).count());
   }
-  f.prepare_ms = median_of(std::move(ms));
+  f.prepare_ms = median(std::move(ms));
 }
 
 // Embree's lines for one fraction and thread count: per update mode, the median commit after
@@ -130,7 +125,7 @@ void run_embree(const Options& o, const testing::SphereSet& spheres, const testi
       const std::size_t b = script.begin[frame], n = script.begin[frame + 1] - b;
       ms.push_back(scene->move_spheres(script.index.data() + b, script.xyz.data() + 3 * b, n));
     }
-    const double commit_ms = median_of(std::move(ms));
+    const double commit_ms = median(std::move(ms));
     const double rays_ms =
         median_ms(o.reps, [&] { scene->trace(rays, rays.size(), 1000.0f, EmbreeMethod::intersect1, threads, hits); });
     std::size_t differ = 0, hit_count = 0;

@@ -246,11 +246,6 @@ bool gyro_run_pyramid(const PyramidScene& s, const WorldDef& def, PyramidRun& ou
 
 // ------------------------------------------------------------------ runner
 
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
-}
-
 // The medians over reps of one engine and settings, and the last rep's state.
 struct Measured {
   double build_ms = 0, step_ms = 0;  // step_ms: per step

@@ -495,9 +495,7 @@ void run_embree(const Options& o, Geometry g, const MeshData* mesh, const testin
         }
         if (rep > 0) builds.push_back(b.ms);
       }
-      std::sort(builds.begin(), builds.end());
-      const std::size_t h = builds.size() / 2;
-      b.ms = builds.size() % 2 ? builds[h] : 0.5 * (builds[h - 1] + builds[h]);
+      b.ms = median(std::move(builds));
       for (EmbreeMethod m : {EmbreeMethod::intersect1, EmbreeMethod::intersect16, EmbreeMethod::occluded1,
                              EmbreeMethod::occluded16}) {
         const bool occluded = m == EmbreeMethod::occluded1 || m == EmbreeMethod::occluded16;

@@ -43,6 +43,12 @@ void JsonLine::print() const {
   std::fflush(stdout);
 }
 
+double median(std::vector<double> v) {
+  if (v.empty()) return NAN;
+  std::sort(v.begin(), v.end());
+  return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+}
+
 double median_ms(int reps, const std::function<void()>& fn) {
   fn();  // warm-up: page faults, thread pool start
   std::vector<double> t;
@@ -52,8 +58,7 @@ double median_ms(int reps, const std::function<void()>& fn) {
     const auto b = std::chrono::steady_clock::now();
     t.push_back(std::chrono::duration<double, std::milli>(b - a).count());
   }
-  std::sort(t.begin(), t.end());
-  return t.size() % 2 ? t[t.size() / 2] : 0.5 * (t[t.size() / 2 - 1] + t[t.size() / 2]);
+  return median(std::move(t));
 }
 
 std::vector<SimdLevel> levels_to_run(const Options& o) {

@@ -35,6 +35,8 @@ class JsonLine {
   void key(const char* k);
 };
 
+/// The median of the values (the mean of the middle two for an even count; NaN for none).
+double median(std::vector<double> v);
 /// Median wall time in milliseconds of `reps` runs of fn (after one warm-up run).
 double median_ms(int reps, const std::function<void()>& fn);
 

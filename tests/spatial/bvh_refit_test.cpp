@@ -89,6 +89,18 @@ Item random_item(SplitMix64& rng) {
   return b;
 }
 
+// The union of a node's slots.
+detail::BoxUnion union_of(const BvhNode8& n) {
+  detail::BoxUnion u;
+  for (int j = 0; j < 8; ++j) {
+    if (n.child[j] == detail::kEmptyChild) continue;
+    const float l[3] = {n.bounds[0][j], n.bounds[2][j], n.bounds[4][j]};
+    const float h[3] = {n.bounds[1][j], n.bounds[3][j], n.bounds[5][j]};
+    u.grow(l, h);
+  }
+  return u;
+}
+
 // Every node of `bvh` recomputed from the items, children before parents: slots, orders,
 // bounds and the expected ray cost, as a refit of the whole tree defines them.
 void recompute_all(detail::BoxBvh8& bvh, const std::vector<Item>& items) {
@@ -105,13 +117,7 @@ void recompute_all(detail::BoxBvh8& bvh, const std::vector<Item>& items) {
           if (item != detail::kNoItem) slot.grow(items[item].lo, items[item].hi);
         leaf_area[code & ~detail::kLeafBit] = slot.half_area();
       } else {
-        const BvhNode8& c = bvh.nodes[code];
-        for (int j = 0; j < 8; ++j) {
-          if (c.child[j] == detail::kEmptyChild) continue;
-          const float l[3] = {c.bounds[0][j], c.bounds[2][j], c.bounds[4][j]};
-          const float h[3] = {c.bounds[1][j], c.bounds[3][j], c.bounds[5][j]};
-          slot.grow(l, h);
-        }
+        slot = union_of(bvh.nodes[code]);
       }
       for (int a = 0; a < 3; ++a) n.bounds[2 * a][k] = slot.lo[a], n.bounds[2 * a + 1][k] = slot.hi[a];
       own.grow(slot.lo, slot.hi);
@@ -164,16 +170,7 @@ TEST(BvhRefit, MarkedNodesEqualEveryNodeRecomputed) {
     for (std::size_t i = 0; i < bvh.nodes.size(); ++i)
       ASSERT_EQ(std::memcmp(&bvh.nodes[i], &ref.nodes[i], sizeof(BvhNode8)), 0) << "round " << round << " node " << i;
     EXPECT_EQ(std::bit_cast<uint64_t>(bvh.stats.sah_cost), std::bit_cast<uint64_t>(ref.stats.sah_cost)) << round;
-    const detail::BoxUnion root = [&] {
-      detail::BoxUnion u;
-      for (int j = 0; j < 8; ++j)
-        if (ref.nodes[0].child[j] != detail::kEmptyChild) {
-          const float l[3] = {ref.nodes[0].bounds[0][j], ref.nodes[0].bounds[2][j], ref.nodes[0].bounds[4][j]};
-          const float h[3] = {ref.nodes[0].bounds[1][j], ref.nodes[0].bounds[3][j], ref.nodes[0].bounds[5][j]};
-          u.grow(l, h);
-        }
-      return u;
-    }();
+    const detail::BoxUnion root = union_of(ref.nodes[0]);
     const AABB want = aabb_from_min_max({root.lo[0], root.lo[1], root.lo[2]}, {root.hi[0], root.hi[1], root.hi[2]});
     EXPECT_EQ(std::memcmp(&bvh.bounds, &want, sizeof(AABB)), 0) << round;
     unchanged_rounds += std::memcmp(before.data(), bvh.nodes.data(), before.size() * sizeof(BvhNode8)) == 0;
