@@ -123,6 +123,8 @@ BvhNode8 empty_node8();
 /// Sets node.order from its children's bounds (the builder's rule: for each octant, the slots
 /// by their centres along its diagonal, ties in slot order, empty slots last).
 void set_child_orders(BvhNode8& node);
+/// Whether node.order is exactly what set_child_orders() would write for its bounds.
+bool child_orders_hold(const BvhNode8& node);
 
 /// Builds the BVH of a valid mesh (binned SAH over triangle centroids, then collapsed from
 /// binary to 8-wide). Deterministic: depends only on the mesh's values.

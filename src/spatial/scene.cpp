@@ -151,7 +151,9 @@ Placed place(const ModelDef& d, const ModelTransform& w, uint32_t index) {
   p.shape = d.shape;
   p.index = index;
   p.world = w;
-  const mat3 rot = to_mat3(w.rotation);
+  // Only the shapes that turn need the matrix: a sphere (most of a moving scene's models,
+  // often) skips it.
+  const auto rot = [&w] { return to_mat3(w.rotation); };
   p.mesh = d.mesh.get();
   vec3 centre = w.position, half{0.0f, 0.0f, 0.0f};
   switch (d.shape) {
@@ -160,18 +162,18 @@ Placed place(const ModelDef& d, const ModelTransform& w, uint32_t index) {
       half = vec3{p.box.half_extents.x, p.box.half_extents.x, p.box.half_extents.x};
       break;
     case ModelShape::box:
-      p.box = {w.position, d.half_extents * w.scale, rot};
-      half = aabb_half_extents(rot, p.box.half_extents);
+      p.box = {w.position, d.half_extents * w.scale, rot()};
+      half = aabb_half_extents(p.box.orientation, p.box.half_extents);
       break;
     case ModelShape::mesh: {
       const AABB local = d.mesh->bounds();
-      p.box = {transform_point(w, local.center), local.half_extents * w.scale, rot};
+      p.box = {transform_point(w, local.center), local.half_extents * w.scale, rot()};
       centre = p.box.center;
-      half = aabb_half_extents(rot, p.box.half_extents);
+      half = aabb_half_extents(p.box.orientation, p.box.half_extents);
       break;
     }
     case ModelShape::plane: {
-      const vec3 n = d.plane.normal * rot;
+      const vec3 n = d.plane.normal * rot();
       const Plane plane{n, d.plane.distance * w.scale + dot(n, w.position)};
       p.set_plane(plane);
       p.bounds = {{0.0f, 0.0f, 0.0f}, {kInf, kInf, kInf}};

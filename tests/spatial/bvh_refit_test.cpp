@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include <bit>
+#include <cmath>
 #include <cstring>
 #include <vector>
 
@@ -45,26 +46,36 @@ void reference_orders(BvhNode8& n) {
   }
 }
 
+// Slot k's bounds of `kind` (see random_node).
+void random_slot(SplitMix64& rng, int kind, BvhNode8& n, int k) {
+  for (int a = 0; a < 3; ++a) {
+    float lo, hi;
+    if (kind == 0) lo = float(int(rng.next() % 3) - 1), hi = lo + float(rng.next() % 3);
+    else if (kind == 1) lo = float(rng.u() - 0.5) * 1e-3f, hi = lo + float(rng.u()) * 1e30f;
+    else if (kind == 2) lo = float(rng.u() * 1e6), hi = lo + float(rng.u());
+    else lo = -0.0f, hi = rng.next() % 2 ? 0.0f : float(rng.u());
+    n.bounds[2 * a][k] = lo, n.bounds[2 * a + 1][k] = hi;
+  }
+}
+
+// A node with about a quarter of its slots empty. Few distinct values (kinds 0 and 3) make
+// ties in some octants and not in their opposite's; wide ranges (1, 2) make sums that round.
+BvhNode8 random_node(SplitMix64& rng, int kind) {
+  BvhNode8 n = detail::empty_node8();
+  for (int k = 0; k < 8; ++k) {
+    if (rng.next() % 4 == 0) continue;  // empty
+    random_slot(rng, kind, n, k);
+    n.child[k] = uint32_t(k);
+  }
+  return n;
+}
+
 TEST(BvhOrders, EqualEightIndependentSorts) {
   SplitMix64 rng(41);
   std::size_t checked = 0, with_ties = 0;
   for (int it = 0; it < 60000; ++it) {
-    BvhNode8 n = detail::empty_node8();
-    // Few distinct values make ties in some octants and not in their opposite's; wide ranges
-    // make sums that round.
     const int kind = it % 4;
-    for (int k = 0; k < 8; ++k) {
-      if (rng.next() % 4 == 0) continue;  // empty
-      for (int a = 0; a < 3; ++a) {
-        float lo, hi;
-        if (kind == 0) lo = float(int(rng.next() % 3) - 1), hi = lo + float(rng.next() % 3);
-        else if (kind == 1) lo = float(rng.u() - 0.5) * 1e-3f, hi = lo + float(rng.u()) * 1e30f;
-        else if (kind == 2) lo = float(rng.u() * 1e6), hi = lo + float(rng.u());
-        else lo = -0.0f, hi = rng.next() % 2 ? 0.0f : float(rng.u());
-        n.bounds[2 * a][k] = lo, n.bounds[2 * a + 1][k] = hi;
-      }
-      n.child[k] = uint32_t(k);
-    }
+    BvhNode8 n = random_node(rng, kind);
     BvhNode8 ref = n;
     detail::set_child_orders(n);
     reference_orders(ref);
@@ -74,6 +85,48 @@ TEST(BvhOrders, EqualEightIndependentSorts) {
   }
   EXPECT_EQ(checked, 60000u);
   EXPECT_GT(with_ties, 20000u);
+}
+
+// A refit keeps a node's orders when child_orders_hold() says they are what the sort would
+// give: it must say so exactly then. Nodes whose orders were set, then some slots moved (the
+// order kept or not), or the stored orders scrambled.
+TEST(BvhOrders, HoldExactlyWhenTheSortWouldGiveThem) {
+  SplitMix64 rng(47);
+  std::size_t kept = 0, changed = 0;
+  for (int it = 0; it < 60000; ++it) {
+    const int kind = it % 4;
+    BvhNode8 n = random_node(rng, kind);
+    detail::set_child_orders(n);
+    ASSERT_TRUE(detail::child_orders_hold(n)) << "node " << it;
+    const int how = int(rng.next() % 4);
+    if (how == 0) {  // one used slot moved anywhere (same kind of values)
+      for (int k = int(rng.next() % 8); ; k = (k + 1) % 8)
+        if (n.child[k] != detail::kEmptyChild) {
+          random_slot(rng, kind, n, k);
+          break;
+        }
+    } else if (how == 1) {  // every bound nudged by an ulp or two
+      for (auto& row : n.bounds)
+        for (float& v : row)
+          if (v == v && v != __builtin_inff() && v != -__builtin_inff())
+            for (int s = int(rng.next() % 3); s > 0; --s) v = std::nextafter(v, rng.next() % 2 ? 1e38f : -1e38f);
+    } else if (how == 2) {  // two nibbles of one order swapped
+      const int o = int(rng.next() % 8), i = int(rng.next() % 8), j = int(rng.next() % 8);
+      const uint32_t a = n.order[o] >> (4 * i) & 15u, b = n.order[o] >> (4 * j) & 15u;
+      n.order[o] &= ~((15u << (4 * i)) | (15u << (4 * j)));
+      n.order[o] |= b << (4 * i) | a << (4 * j);
+    } else {  // a nibble set to a value no slot has
+      n.order[rng.next() % 8] |= 8u << (4 * (rng.next() % 8));
+    }
+    BvhNode8 ref = n;
+    reference_orders(ref);
+    bool same = true;
+    for (int o = 0; o < 8; ++o) same = same && n.order[o] == ref.order[o];
+    ASSERT_EQ(detail::child_orders_hold(n), same) << "node " << it << " change " << how;
+    (same ? kept : changed) += 1;
+  }
+  EXPECT_GT(kept, 10000u);
+  EXPECT_GT(changed, 10000u);
 }
 
 struct Item {
