@@ -144,7 +144,7 @@ enum class SceneAccel : uint32_t {
 /// Whether ray batches through a scene's tree (closest and any hit) prefetch each next
 /// visit's cache lines. It changes speed only, never a result. Prefetching pays once the tree outgrows the
 /// caches and costs instructions before: on the machine the defaults were measured on (1 MiB
-/// L2 per core, 32 MiB L3), without it up to about 8 MiB of tree (3 * 10^5 spheres), with it
+/// L2 per core, 32 MiB L3), without it up to about 8 MiB of tree (10^5 spheres), with it
 /// beyond. Set it where your machine's caches differ.
 enum class RayPrefetch : uint32_t {
   automatic = 0,  ///< when the tree (nodes and leaves) exceeds 8 MiB
@@ -164,9 +164,9 @@ struct SceneSettings {
   /// A refit, like the world transforms before it, redoes only what the moves since the
   /// last query touched: the moved models and their descendants, the leaves holding them and
   /// the nodes above those. On R1's 10^4 spheres (one thread, gyro-bench R1M), prepare()
-  /// after moving a tenth of them takes 0.093-0.10 ms, a hundredth 0.020 ms, a thousandth
-  /// 0.004 ms, against 2.5 ms for a rebuild (Embree's refit of the same spheres: 0.080-0.085
-  /// ms whatever moved). Rays on a refit tree run up to about a fifth slower than on a fresh one
+  /// after moving a tenth of them takes 0.16-0.22 ms, a hundredth 0.024-0.028 ms, a
+  /// thousandth 0.005-0.006 ms, against 3.8-4.0 ms for a rebuild (Embree's refit of the same
+  /// spheres: 0.084 ms whatever moved). Rays on a refit tree run up to about a fifth slower than on a fresh one
   /// (set false where rays dominate a frame). Answers are the same
   /// either way, except which model an any-hit names: that follows the tree, so the
   /// sequence of calls (deterministic, like every result), not the models alone. False:

@@ -11,7 +11,7 @@
 // unused lanes have NaN corners (no ray hits them) and index kNoTriangle.
 //
 // The same builder also makes a BVH over arbitrary boxes (BoxBvh8: the scene's top level
-// over its models), with the same nodes and leaf blocks of up to four item indices.
+// over its models), with the same nodes and leaf blocks of item indices (kBoxBvhLeafItems each).
 #pragma once
 
 #include "core/default_init.hpp"
@@ -77,15 +77,25 @@ struct Bvh8 {
   BvhStats stats;
 };
 
-/// A leaf block of a BVH over boxes: up to four item indices, kNoItem in unused lanes.
-struct alignas(16) BvhItems4 {
-  uint32_t item[4];
+/// The most items a leaf block of a BVH over boxes (a scene's models) holds: one. Each
+/// model's own box is then tested in its parent's 8-wide lane before the model itself. With
+/// up to four per block (blocks of a quarter of the SAH cost) R1's rays ran 6.98 Mrays/s,
+/// with two 8.06-8.23, with one 8.5-9.0 (one thread, AVX-512): a block's box around four
+/// spheres is entered far more often than any of them is hit. The price is three times the
+/// nodes: a build of R1's 10^4 spheres 2.4 -> 3.6 ms, a refit after a tenth of them moved
+/// 0.09-0.10 -> 0.16-0.20 ms (gyro-bench R1M).
+inline constexpr uint32_t kBoxBvhLeafItems = 1;
+
+/// A leaf block of a BVH over boxes: up to kBoxBvhLeafItems item indices, kNoItem in the
+/// others.
+struct BvhItems {
+  uint32_t item[kBoxBvhLeafItems];
 };
 
 /// A BVH over boxes: nodes as Bvh8's, leaves holding item indices (the input order).
 struct BoxBvh8 {
   DefaultInitVector<BvhNode8> nodes;  ///< nodes[0] is the root (all slots empty when there are no boxes)
-  DefaultInitVector<BvhItems4> leaves;
+  DefaultInitVector<BvhItems> leaves;
   AABB bounds;
   BvhStats stats;
 };
@@ -114,7 +124,8 @@ struct BoxUnion {
 
 /// The expected cost of a random ray through a tree with these half areas (the nodes' boxes
 /// and the leaf blocks', in index order, node 0 the root): every node and leaf block tested
-/// with the probability of its area over the root's, summed nodes first. The build's
+/// with the probability of its area over the root's (the areas summed in a fixed order,
+/// nodes first, then divided by the root's). The build's
 /// BvhStats::sah_cost and a refit's (bvh_refit.hpp) both come from here.
 double sah_cost(const double* node_area, std::size_t nodes, const double* leaf_area, std::size_t leaves);
 

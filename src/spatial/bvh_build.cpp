@@ -20,8 +20,9 @@
 //   nodes were stored);
 // - every node and leaf block written whole, in parallel.
 //
-// The SAH cost counts 4-wide leaf blocks, not triangles (a block of 1 to 4 triangles costs
-// one lane test), so a node of at most 4 triangles is always a leaf.
+// The SAH cost counts leaf blocks, not primitives: a mesh's 4-wide blocks (a block of 1 to
+// 4 triangles costs one lane test, so a node of at most 4 triangles is always a leaf), a box
+// BVH's blocks of kBoxBvhLeafItems (bvh.hpp).
 //
 // One builder serves two outputs: a mesh's BVH (leaves hold the triangles' corners) and a
 // BVH over arbitrary boxes (leaves hold item indices; the scene's top level). Only the
@@ -38,7 +39,6 @@ namespace gyro::detail {
 namespace {
 
 constexpr int kBins = 32;
-constexpr uint32_t kLeafSize = 4;
 // Subtrees of at most kTaskPrims primitives are built as parallel tasks (R2's 522k
 // triangles make 182); the top's levels work in chunks of kChunkPrims.
 constexpr uint32_t kTaskPrims = 4096;
@@ -253,7 +253,8 @@ inline bool orders_hold(const BvhNode8& n) {
   return true;
 }
 
-double blocks(uint32_t n) { return double((n + kLeafSize - 1) / kLeafSize); }
+// The leaf blocks of up to `size` primitives that n primitives fill.
+double blocks(uint32_t n, uint32_t size) { return double((n + size - 1) / size); }
 
 // Where a node's centroids fall into bins along each axis (scale 0: a flat axis, all in bin 0).
 struct Grid {
@@ -281,7 +282,7 @@ struct Plane {
 };
 
 // Binned SAH: the best plane between bins on any axis.
-Plane best_plane(const Bins& bins, uint32_t count, const Grid& grid) {
+Plane best_plane(const Bins& bins, uint32_t count, const Grid& grid, uint32_t leaf_size) {
   const auto& bin_box = bins.box;
   const auto& bin_count = bins.count;
   double best_cost = kInf;
@@ -303,7 +304,7 @@ Plane best_plane(const Bins& bins, uint32_t count, const Grid& grid) {
     for (int i = m - 1; i > 0; --i) {
       acc.grow(bin_box[axis][used[i]]);
       n += bin_count[axis][used[i]];
-      right_cost[i] = acc.half_area() * blocks(n);
+      right_cost[i] = acc.half_area() * blocks(n, leaf_size);
     }
     acc = Box();
     n = 0;
@@ -312,7 +313,7 @@ Plane best_plane(const Bins& bins, uint32_t count, const Grid& grid) {
       acc.grow(bin_box[axis][b]);
       n += bin_count[axis][b];
       if (n == count) break;
-      const double cost = acc.half_area() * blocks(n) + right_cost[i + 1];
+      const double cost = acc.half_area() * blocks(n, leaf_size) + right_cost[i + 1];
       if (cost < best_cost) best_cost = cost, best = {axis, b};
     }
   }
@@ -321,8 +322,9 @@ Plane best_plane(const Bins& bins, uint32_t count, const Grid& grid) {
 
 class Builder {
  public:
-  // prim[i] is primitive i's box; the leaf writer receives primitive indices.
-  explicit Builder(DefaultInitVector<Bounds> prims) : prim_(std::move(prims)) {
+  // prim[i] is primitive i's box; a leaf block holds up to leaf_size of them, and the leaf
+  // writer receives their indices.
+  Builder(DefaultInitVector<Bounds> prims, uint32_t leaf_size) : prim_(std::move(prims)), leaf_size_(leaf_size) {
     const std::size_t n = prim_.size();
     centroid_.resize(n);
     order_.resize(n);
@@ -440,6 +442,7 @@ class Builder {
   };
 
   DefaultInitVector<Bounds> prim_;
+  uint32_t leaf_size_;  // the most primitives a leaf block holds
   DefaultInitVector<F4> centroid_;
   DefaultInitVector<uint32_t> order_;
   DefaultInitVector<uint32_t> scratch_;  // a task partition's right side; at the top, each chunk's both sides
@@ -525,7 +528,7 @@ class Builder {
         node[r] = uint32_t(nodes_.size());
         nodes_.push_back({o.box, 0, 0, 0, 0});
         if (o.parent != kNoParent) (o.side ? nodes_[o.parent].right : nodes_[o.parent].left) = node[r];
-        if (o.count <= kLeafSize) nodes_[node[r]].first = o.first, nodes_[node[r]].count = o.count;
+        if (o.count <= leaf_size_) nodes_[node[r]].first = o.first, nodes_[node[r]].count = o.count;
         else if (o.count <= kTaskPrims) tasks.push_back({o.first, o.count, node[r], o.depth, o.box, o.cbox});
         // Past this depth only median splits, which end within log2(count) <= 31 more levels.
         else split[r] = o.depth + 33 < kBvhMaxDepth ? 1 : 2;
@@ -539,7 +542,7 @@ class Builder {
         if (split[pieces[k].range] == 1) merged[pieces[k].range].merge(bins[k]);
       std::vector<Plane> plane(level.size());
       for (uint32_t r = 0; r < level.size(); ++r)
-        if (split[r] == 1) plane[r] = best_plane(merged[r], level[r].count, grid[r]);
+        if (split[r] == 1) plane[r] = best_plane(merged[r], level[r].count, grid[r], leaf_size_);
       // The stable partition in parallel: each piece sorts its items into its own stretch of
       // scratch_ (the left side forward, the right side backward from its end) and gathers
       // both sides' boxes for the next level; the counts then give every piece its places.
@@ -612,7 +615,7 @@ class Builder {
     else node_boxes(first, first + count, box, cbox);
     const uint32_t index = uint32_t(nodes.size());
     nodes.push_back({box, 0, 0, 0, 0});
-    if (count <= kLeafSize) {
+    if (count <= leaf_size_) {
       nodes[index].first = first, nodes[index].count = count;
       return index;
     }
@@ -658,7 +661,7 @@ class Builder {
     const Grid grid(cbox);
     Bins bins;
     bin_range(bins, grid, first, first + count);
-    const Plane plane = best_plane(bins, count, grid);
+    const Plane plane = best_plane(bins, count, grid, leaf_size_);
     if (plane.axis < 0) return 0;
     uint32_t* const range = order_.data() + first;
     uint32_t* const spill = scratch_.data() + first;  // this range's own: subtrees run in parallel
@@ -780,21 +783,31 @@ struct MeshLeaf {
   }
 };
 
-void box_leaf(BvhItems4& leaf, const uint32_t* items, uint32_t count) {
-  for (uint32_t k = 0; k < 4; ++k) leaf.item[k] = k < count ? items[k] : kNoItem;
+void box_leaf(BvhItems& leaf, const uint32_t* items, uint32_t count) {
+  for (uint32_t k = 0; k < kBoxBvhLeafItems; ++k) leaf.item[k] = k < count ? items[k] : kNoItem;
 }
 
 }  // namespace
 
 BvhNode8 empty_node8() { return empty_node<BvhNode8>(); }
 
+// Eight running sums, each over every eighth area, then one division: a refit pays this
+// for the whole tree every frame, and one sum of quotients was a chain of dependent
+// additions (R1M with 10^4 single-model leaves: most of a frame that moved a thousandth).
 double sah_cost(const double* node_area, std::size_t nodes, const double* leaf_area, std::size_t leaves) {
   if (nodes == 0) return 0.0;
   const double root = std::max(node_area[0], 1e-300);
-  double sah = 1.0;  // the root, always tested (node_area[0] / root, but also for a flat root)
-  for (std::size_t i = 1; i < nodes; ++i) sah += node_area[i] / root;
-  for (std::size_t i = 0; i < leaves; ++i) sah += leaf_area[i] / root;
-  return sah;
+  double lane[8] = {};
+  const auto add = [&lane](const double* a, std::size_t n) {
+    std::size_t i = 0;
+    for (; i + 8 <= n; i += 8)
+      for (int k = 0; k < 8; ++k) lane[k] += a[i + std::size_t(k)];
+    for (int k = 0; i < n; ++i, ++k) lane[k] += a[i];
+  };
+  add(node_area + 1, nodes - 1);
+  add(leaf_area, leaves);
+  const double sum = ((lane[0] + lane[1]) + (lane[2] + lane[3])) + ((lane[4] + lane[5]) + (lane[6] + lane[7]));
+  return 1.0 + sum / root;  // the root is always tested (1, also for a flat root)
 }
 void set_child_orders(BvhNode8& node) { set_orders(node); }
 bool child_orders_hold(const BvhNode8& node) { return orders_hold(node); }
@@ -812,7 +825,7 @@ Bvh8 build_bvh8(const MeshData& mesh) {
       prims[i] = box;
     }
   });
-  return Builder(std::move(prims)).run<Bvh8>(MeshLeaf{mesh});
+  return Builder(std::move(prims), 4).run<Bvh8>(MeshLeaf{mesh});
 }
 
 BoxBvh8 build_box_bvh8(const BvhBox* boxes, std::size_t count) {
@@ -832,7 +845,7 @@ BoxBvh8 build_box_bvh8(const BvhBox* boxes, std::size_t count) {
       prims[i] = box;
     }
   });
-  return Builder(std::move(prims)).run<BoxBvh8>(box_leaf);
+  return Builder(std::move(prims), kBoxBvhLeafItems).run<BoxBvh8>(box_leaf);
 }
 
 }  // namespace gyro::detail

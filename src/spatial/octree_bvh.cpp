@@ -47,21 +47,22 @@ class Flattener {
   }
 
   uint32_t block(const uint32_t* items, uint32_t count) {
-    BvhItems4 leaf;
-    for (uint32_t k = 0; k < 4; ++k) leaf.item[k] = k < count ? items[k] : kNoItem;
+    BvhItems leaf;
+    for (uint32_t k = 0; k < kBoxBvhLeafItems; ++k) leaf.item[k] = k < count ? items[k] : kNoItem;
     out_.leaves.push_back(leaf);
     return kLeafBit | uint32_t(out_.leaves.size() - 1);
   }
 
-  // A leaf's items (more than four, or the root's) under a node: up to eight blocks, each in
-  // its slot, or eight even groups of blocks, each under a node of its own.
+  // A leaf's items (more than a block holds, or the root's) under a node: up to eight
+  // blocks, each in its slot, or eight even groups of blocks, each under a node of its own.
   uint32_t holder(const uint32_t* items, uint32_t count, std::size_t depth) {
+    constexpr uint32_t K = kBoxBvhLeafItems;
     const uint32_t me = add_node(depth);
-    const uint32_t blocks = (count + 3) / 4;
+    const uint32_t blocks = (count + K - 1) / K;
     for (uint32_t g = 0; g < 8; ++g) {
       const uint32_t b0 = uint32_t(uint64_t(blocks) * g / 8), b1 = uint32_t(uint64_t(blocks) * (g + 1) / 8);
       if (b0 == b1) continue;
-      const uint32_t first = 4 * b0, n = std::min(count, 4 * b1) - first;
+      const uint32_t first = K * b0, n = std::min(count, K * b1) - first;
       const uint32_t code = b1 - b0 == 1 ? block(items + first, n) : holder(items + first, n, depth + 1);
       const BoxUnion b = items_bounds(items + first, n);
       set_slot(me, int(g), code, b.lo, b.hi);
@@ -77,7 +78,7 @@ class Flattener {
       if (!(c.lo[0] <= c.hi[0])) continue;  // holds nothing
       uint32_t code;
       if (c.first_child != kOctreeLeaf) code = inner(c, depth + 1);
-      else if (c.item_count <= 4) code = block(&tree_.items()[c.first_item], c.item_count);
+      else if (c.item_count <= kBoxBvhLeafItems) code = block(&tree_.items()[c.first_item], c.item_count);
       else code = holder(&tree_.items()[c.first_item], c.item_count, depth + 1);
       set_slot(me, k, code, c.lo, c.hi);
     }
@@ -98,7 +99,7 @@ BoxBvh8 octree_bvh8(const Octree& octree, const BvhBox* boxes) {
   }
   out.stats.nodes = out.nodes.size();
   out.stats.leaves = out.leaves.size();
-  out.stats.bytes = out.nodes.size() * sizeof(BvhNode8) + out.leaves.size() * sizeof(BvhItems4);
+  out.stats.bytes = out.nodes.size() * sizeof(BvhNode8) + out.leaves.size() * sizeof(BvhItems);
   return out;
 }
 

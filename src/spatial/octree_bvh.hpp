@@ -3,9 +3,9 @@
 // tree's shape differs between the two modes.
 //
 // An inner octree node becomes a BvhNode8 whose slots are its eight children with their
-// content bounds (an empty child, an empty slot). A leaf's items go in blocks of four, a
-// block straight in the parent's slot when the leaf holds at most four, under nodes of their
-// own otherwise (each slot with its block's own bounds). An item stored in several leaves is
+// content bounds (an empty child, an empty slot). A leaf's items go in blocks of
+// kBoxBvhLeafItems (bvh.hpp), a block straight in the parent's slot when the leaf holds no
+// more, under nodes of their own otherwise (each slot with its block's own bounds). An item stored in several leaves is
 // in several blocks: the kernel then tests it more than once, which changes no closest hit
 // (the same t, the same tie-break).
 #pragma once

@@ -252,8 +252,8 @@ struct Scene::Impl {
   std::vector<uint32_t> tree_slots;   // tree item k -> slot, ascending id index
   std::vector<uint32_t> plane_slots;  // placed planes, ascending id index
   detail::BoxBvh8 bvh;
-  std::vector<detail::SceneLeaf4> ray_leaves;  // bvh.leaves as the ray kernel reads them
-  std::vector<detail::SceneBoxes4> ray_boxes;  // their box models, for leaves with any
+  std::vector<detail::SceneLeaf> ray_leaves;  // bvh.leaves as the ray kernel reads them
+  std::vector<detail::SceneBox> ray_boxes;    // their box models
   bool rays_large = false;                     // beyond kFetchBytes (RayPrefetch::automatic)
   Octree octree;
   SceneAccel built = SceneAccel::bvh;
@@ -443,11 +443,12 @@ struct Scene::Impl {
     }
     build_ray_leaves();
     // Rays take turns at every size; prefetching the next visit costs more than it saves
-    // up to about 3 * 10^5 spheres at R1's density (R1's closest-hit rays spread over the
-    // scene, one thread; 8 MB of tree: 1.5-1.6 Mrays/s either way), at 10^5 3.1-3.4
-    // Mrays/s without against 2.4 with, at 10^6 0.8-0.9 against 1.1.
+    // up to about 10^5 spheres at R1's density (R1-like closest-hit rays spread over the
+    // scene, one thread, one model per leaf: at 10^4 9.1 Mrays/s without against 7.2 with,
+    // at 10^5 (9 MB of tree) 4.2-4.3 either way, at 3 * 10^5 2.4 against 2.5, at 10^6 1.15
+    // against 1.56).
     const std::size_t bytes = bvh.nodes.size() * sizeof(detail::BvhNode8) +
-                              ray_leaves.size() * sizeof(detail::SceneLeaf4) + ray_boxes.size() * sizeof(detail::SceneBoxes4);
+                              ray_leaves.size() * sizeof(detail::SceneLeaf) + ray_boxes.size() * sizeof(detail::SceneBox);
     rays_large = bytes > kFetchBytes;
     built_sah = bvh.stats.sah_cost;
   }
@@ -476,7 +477,8 @@ struct Scene::Impl {
     return keep;
   }
 
-  // Each leaf's spheres and boxes as lanes for the ray kernel; meshes go to the exact test.
+  // Each leaf's model for the ray kernel: a sphere or a box as its test reads it; a mesh goes
+  // to the exact test.
   void build_ray_leaves() {
     ray_leaves.resize(bvh.leaves.size());
     for (std::size_t l = 0; l < bvh.leaves.size(); ++l) {
@@ -485,46 +487,33 @@ struct Scene::Impl {
     }
   }
 
-  // Leaf l's lanes from its models' current placements. A leaf that had a box block keeps
-  // its place in ray_boxes (a refit: the same items, so the same shapes); one without gets a
-  // new block if it holds a box.
+  // Leaf l's model from its current placement. A leaf that had a box block keeps its place in
+  // ray_boxes (a refit: the same item, so the same shape); one without gets a new block if
+  // its model is a box.
   void write_ray_leaf(std::size_t l) {
     const float nan = __builtin_nanf("");
-    detail::SceneLeaf4& r = ray_leaves[l];
+    detail::SceneLeaf& r = ray_leaves[l];
     const uint32_t block = r.box_block;
-    r = detail::SceneLeaf4{};
+    const uint32_t item = bvh.leaves[l].item[0];
+    const Placed* p = item == detail::kNoItem ? nullptr : &placed[tree_slots[item]];
+    const bool sphere = p && p->shape == ModelShape::sphere;
+    r.item = item;
+    r.key = p ? p->index : detail::kNoItem;
+    r.sphere[0] = sphere ? p->box.center.x : nan;  // Placed::sphere()'s fields
+    r.sphere[1] = sphere ? p->box.center.y : nan;
+    r.sphere[2] = sphere ? p->box.center.z : nan;
+    r.sphere[3] = sphere ? p->box.half_extents.x : nan;
+    r.exact = p && !sphere && p->shape != ModelShape::box ? 1u : 0u;
     r.box_block = detail::kNoItem;
-    detail::SceneBoxes4 boxes;
-    boxes.mask = 0;
-    for (int k = 0; k < 4; ++k) {
-      const uint32_t item = bvh.leaves[l].item[k];
-      r.item[k] = item;
-      r.key[k] = item == detail::kNoItem ? detail::kNoItem : placed[tree_slots[item]].index;
-      const Placed* p = item == detail::kNoItem ? nullptr : &placed[tree_slots[item]];
-      const bool sphere = p && p->shape == ModelShape::sphere;
-      r.sphere[0][k] = sphere ? p->box.center.x : nan;  // Placed::sphere()'s fields
-      r.sphere[1][k] = sphere ? p->box.center.y : nan;
-      r.sphere[2][k] = sphere ? p->box.center.z : nan;
-      r.sphere[3][k] = sphere ? p->box.half_extents.x : nan;
-      if (p && p->shape == ModelShape::box) {
-        const OBB& b = p->box;
-        const mat3& o = b.orientation;
-        const float v[15] = {b.center.x, b.center.y, b.center.z, b.half_extents.x, b.half_extents.y,
-                             b.half_extents.z, o.m[0][0], o.m[0][1], o.m[0][2], o.m[1][0], o.m[1][1],
-                             o.m[1][2], o.m[2][0], o.m[2][1], o.m[2][2]};
-        // The first box fills every lane (a valid box, so no lane computes on garbage);
-        // later boxes take their own.
-        for (int j = boxes.mask ? k : 0; j < 4; ++j)
-          for (int row = 0; row < 15; ++row) boxes.obb[row][j] = v[row];
-        boxes.mask |= 1u << k;
-      } else if (p && !sphere) {
-        r.exact_mask |= 1u << k;
-      }
-    }
-    if (boxes.mask) {
+    if (p && p->shape == ModelShape::box) {
+      const OBB& b = p->box;
+      const mat3& o = b.orientation;
+      const detail::SceneBox box{{b.center.x, b.center.y, b.center.z, b.half_extents.x, b.half_extents.y, b.half_extents.z,
+                                  o.m[0][0], o.m[0][1], o.m[0][2], o.m[1][0], o.m[1][1], o.m[1][2], o.m[2][0], o.m[2][1],
+                                  o.m[2][2]}};
       r.box_block = block != detail::kNoItem ? block : uint32_t(ray_boxes.size());
-      if (block != detail::kNoItem) ray_boxes[block] = boxes;
-      else ray_boxes.push_back(boxes);
+      if (block != detail::kNoItem) ray_boxes[block] = box;
+      else ray_boxes.push_back(box);
     }
   }
 
@@ -735,7 +724,7 @@ SceneStats Scene::stats() const {
   s.builds = m.builds, s.refits = m.refits;
   if (m.built == SceneAccel::bvh) s.sah_cost = m.bvh.stats.sah_cost;
   // Both modes' rays walk m.bvh (under the octree, its node form: octree_bvh.hpp).
-  s.bytes = m.bvh.stats.bytes + m.ray_leaves.size() * sizeof(detail::SceneLeaf4) + m.ray_boxes.size() * sizeof(detail::SceneBoxes4);
+  s.bytes = m.bvh.stats.bytes + m.ray_leaves.size() * sizeof(detail::SceneLeaf) + m.ray_boxes.size() * sizeof(detail::SceneBox);
   if (m.built == SceneAccel::bvh) {
     s.nodes = m.bvh.stats.nodes, s.leaves = m.bvh.stats.leaves, s.max_depth = m.bvh.stats.max_depth;
     s.references = m.tree_slots.size();

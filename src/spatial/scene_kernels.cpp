@@ -1,7 +1,7 @@
 // scene_raycast at this translation unit's SIMD level: rays through the models' 8-wide BVH
 // (or the octree's node form, octree_bvh.hpp), with a node's eight child boxes tested in one
-// 8-wide lane (Oct), a leaf's sphere models in one 4-wide lane and its box models in another
-// (Quad, ray_sphere_t and ray_obb_t: the scalar raycasts' expressions, so their bits).
+// 8-wide lane (Oct) and each leaf's one model by the scalar raycast's own expressions
+// (ray_sphere_t, ray_obb_t, or the scene's exact test for a mesh), so their bits.
 //
 // Closest hit, rays from many origins: eight rays take turns, one visit each, and a node's
 // entered children are pushed in the node's stored order for the ray's octant, without a
@@ -47,7 +47,7 @@ namespace {
 
 using detail::BvhNode8;
 using detail::kLeafBit;
-using detail::SceneLeaf4;
+using detail::SceneLeaf;
 
 constexpr float kInf = __builtin_inff();
 constexpr float kSlabSlack = 0x1p-18f;
@@ -64,9 +64,9 @@ struct Entry {
 
 struct Walk {
   Oct o_near[3], o_far[3], inv[3], tmin8;  // the origin moved by the pad: o_near[k] - bound is the widened slab
-  RayL<Quad> ray4;
-  RayDd<Quad> dd4;
-  Quad tmin4, tmax4;
+  RayL<float> ray1;
+  RayDd<float> dd1;
+  float tmin1, tmax1;
   std::ptrdiff_t near_at[3], far_at[3];  // the slab rows' offsets in BvhNode8::bounds, in bytes (bounds_row)
   unsigned oct;
   float tmax, best_t, limit;
@@ -86,7 +86,7 @@ template <bool Fetch> inline void prefetch(const SceneRaycastArgs& a, uint32_t c
   if constexpr (!Fetch) return;
   const char* p = code & kLeafBit ? reinterpret_cast<const char*>(&a.leaves[code & ~kLeafBit])
                                   : reinterpret_cast<const char*>(&a.nodes[code]);
-  const std::size_t bytes = code & kLeafBit ? sizeof(SceneLeaf4) : sizeof(BvhNode8);
+  const std::size_t bytes = code & kLeafBit ? sizeof(SceneLeaf) : sizeof(BvhNode8);
   for (std::size_t line = 0; line < bytes; line += 64) __builtin_prefetch(p + line);
 }
 
@@ -125,9 +125,9 @@ template <bool OnStack, bool Fetch> inline void start(const SceneRaycastArgs& a,
   }
   const float tmin = a.tmin ? a.tmin[i] : 0.0f;
   w.tmax = a.tmax ? a.tmax[i] : kInf;
-  w.tmin8 = Oct(tmin), w.tmin4 = Quad(tmin), w.tmax4 = Quad(w.tmax);
-  w.ray4 = {{Quad(o[0]), Quad(o[1]), Quad(o[2])}, {Quad(d[0]), Quad(d[1]), Quad(d[2])}};
-  w.dd4 = ray_dd(w.ray4.d);
+  w.tmin8 = Oct(tmin), w.tmin1 = tmin, w.tmax1 = w.tmax;
+  w.ray1 = {{o[0], o[1], o[2]}, {d[0], d[1], d[2]}};
+  w.dd1 = ray_dd(w.ray1.d);
   w.best_t = a.best_t[i], w.best_key = a.best_key[i], w.best_item = kNone;
   w.ray = i;
   w.next = {0, tmin};
@@ -158,39 +158,27 @@ template <bool Fetch> inline bool next_entry(const SceneRaycastArgs& a, Walk& w)
   return false;
 }
 
-// A leaf's models for one ray: its best and limit updated. True when an any-hit walk has
-// found its hit (the walk is over).
-template <bool AnyHit> inline bool visit_leaf(const SceneRaycastArgs& a, Walk& w, const SceneLeaf4& leaf) {
-  const SphereL<Quad> s{{load<Quad>(leaf.sphere[0]), load<Quad>(leaf.sphere[1]), load<Quad>(leaf.sphere[2])},
-                        load<Quad>(leaf.sphere[3])};
-  const Quad t = ray_sphere_t(w.ray4, w.dd4, s, w.tmin4, w.tmax4);
-  bool lane_hit = any(t < Quad(kInf));
-  // Most leaves of spheres a ray enters it does not hit: nothing more to do there.
-  if (!lane_hit && leaf.box_block == detail::kNoItem && leaf.exact_mask == 0) return false;
-  float ts[4];
-  store(ts, t);
+// A leaf's model for one ray: its best and limit updated. True when an any-hit walk has
+// found its hit (the walk is over). One model, tested by the scalar raycast's expressions
+// (lanes.hpp: a lane computes what a float does, so the bits are the same).
+template <bool AnyHit> inline bool visit_leaf(const SceneRaycastArgs& a, Walk& w, const SceneLeaf& leaf) {
+  float t;
   if (leaf.box_block != detail::kNoItem) {
-    const detail::SceneBoxes4& bx = a.boxes[leaf.box_block];
-    const auto row = [&](int r) { return load<Quad>(bx.obb[r]); };
-    const auto v3 = [&](int r) { return V3<Quad>{row(r), row(r + 1), row(r + 2)}; };
-    const ObbL<Quad> b{v3(0), v3(3), {v3(6), v3(9), v3(12)}};
-    float tb[4];
-    store(tb, ray_obb_t(w.ray4, b, w.tmin4, w.tmax4));
-    for (int k = 0; k < 4; ++k)
-      if (bx.mask >> k & 1u) ts[k] = tb[k], lane_hit = lane_hit || tb[k] < kInf;
+    const float* v = a.boxes[leaf.box_block].obb;
+    const auto v3 = [&](int r) { return V3<float>{v[r], v[r + 1], v[r + 2]}; };
+    const ObbL<float> b{v3(0), v3(3), {v3(6), v3(9), v3(12)}};
+    t = ray_obb_t(w.ray1, b, w.tmin1, w.tmax1);
+  } else if (leaf.exact) {
+    t = a.exact(a.ctx, w.ray, leaf.item, w.best_t, w.best_key, limit_of(w, AnyHit));
+  } else {
+    // Most spheres a ray's walk reaches it does not hit: nothing more to do there.
+    const SphereL<float> s{{leaf.sphere[0], leaf.sphere[1], leaf.sphere[2]}, leaf.sphere[3]};
+    t = ray_sphere_t(w.ray1, w.dd1, s, w.tmin1, w.tmax1);
   }
-  if (lane_hit || leaf.exact_mask != 0) {
-    for (int k = 0; k < 4; ++k) {
-      if (leaf.exact_mask >> k & 1u) {
-        const float limit = limit_of(w, AnyHit);
-        ts[k] = a.exact(a.ctx, w.ray, leaf.item[k], w.best_t, w.best_key, limit);
-      }
-      if (!(ts[k] < kInf)) continue;
-      take(w, ts[k], leaf.key[k], leaf.item[k]);
-      if constexpr (AnyHit) return true;
-    }
-    w.limit = limit_of(w, AnyHit);
-  }
+  if (!(t < kInf)) return false;
+  take(w, t, leaf.key, leaf.item);
+  if constexpr (AnyHit) return true;
+  w.limit = limit_of(w, AnyHit);
   return false;
 }
 
@@ -420,7 +408,7 @@ inline void walk_packet(const SceneRaycastArgs& a, Walk* W, unsigned rays, Packe
     return lane_bits((tn <= tf + abs(tf) * Oct(kSlabSlack)) && (tn < Oct(kInf)));
   };
   const auto visit = [&](uint32_t code, unsigned mask) {
-    const SceneLeaf4& leaf = a.leaves[code & ~kLeafBit];
+    const SceneLeaf& leaf = a.leaves[code & ~kLeafBit];
     for (unsigned m = mask; m != 0; m &= m - 1) {
       const int r = __builtin_ctz(m);
       visit_leaf<false>(a, W[r], leaf);

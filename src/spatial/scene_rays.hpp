@@ -1,6 +1,6 @@
 // The scene raycast kernel: rays through the scene's 8-wide BVH over its models (a node's
-// eight child boxes in one 8-wide lane), a leaf's sphere models and its box models each
-// tested in one 4-wide lane, its meshes through the scene's exact test. Closest or any hit.
+// eight child boxes in one 8-wide lane, each leaf one model: a sphere or a box tested by the
+// scalar raycast's expressions, a mesh through the scene's exact test). Closest or any hit.
 #pragma once
 
 #include "core/dispatch.hpp"
@@ -12,22 +12,23 @@
 namespace gyro {
 namespace detail {
 
-/// A scene leaf block as the ray kernel reads it, built next to the BVH's BvhItems4.
-struct alignas(64) SceneLeaf4 {
-  float sphere[4][4];   ///< cx, cy, cz, r per lane; r is NaN where the item is not a sphere (no ray hits it)
-  uint32_t key[4];      ///< the model's id index (the tie-break), kNoItem where there is no item
-  uint32_t item[4];     ///< the tree item, kNoItem where there is none
-  uint32_t exact_mask;  ///< bit k: lane k is a model the exact callback tests (a mesh)
-  uint32_t box_block;   ///< index of the leaf's SceneBoxes4, kNoItem when it has no box model
-  uint32_t unused[6] = {};  ///< to the cache line, zeroed so the bytes are defined
+static_assert(kBoxBvhLeafItems == 1, "a scene's ray leaf holds one model");
+
+/// A scene leaf block as the ray kernel reads it (its one model), built next to the BVH's
+/// BvhItems: two to a cache line.
+struct alignas(32) SceneLeaf {
+  float sphere[4];     ///< cx, cy, cz, r; r is NaN where the model is not a sphere (no ray hits it)
+  uint32_t key;        ///< the model's id index (the tie-break), kNoItem where there is none
+  uint32_t item;       ///< the tree item, kNoItem where there is none
+  uint32_t exact;      ///< 1: the exact callback tests the model (a mesh)
+  uint32_t box_block;  ///< index of the model's SceneBox, kNoItem when it is not a box
 };
 
-/// The box models of a leaf as lanes, for ray_obb_t: the OBB exactly as the scalar raycast
-/// reads it (centre, half extents, the orientation's rows), so the same bits.
-struct alignas(64) SceneBoxes4 {
-  float obb[15][4];  ///< cx, cy, cz, ex, ey, ez, u0 xyz, u1 xyz, u2 xyz per lane
-  uint32_t mask;     ///< bit k: lane k is a box model (the others repeat one of them, unused)
-  uint32_t unused[3] = {};
+/// A box model for ray_obb_t: the OBB exactly as the scalar raycast reads it (centre, half
+/// extents, the orientation's rows), so the same bits.
+struct alignas(64) SceneBox {
+  float obb[15];  ///< cx, cy, cz, ex, ey, ez, u0 xyz, u1 xyz, u2 xyz
+  uint32_t unused = 0;
 };
 
 }  // namespace detail
@@ -39,8 +40,8 @@ using scene_exact_fn = float(void* ctx, std::size_t ray, uint32_t item, float be
 
 struct SceneRaycastArgs {
   const detail::BvhNode8* nodes;  ///< nodes[0] is the root
-  const detail::SceneLeaf4* leaves;
-  const detail::SceneBoxes4* boxes;  ///< by SceneLeaf4::box_block
+  const detail::SceneLeaf* leaves;
+  const detail::SceneBox* boxes;  ///< by SceneLeaf::box_block
   const float *ox, *oy, *oz, *dx, *dy, *dz;
   const float* tmin;      ///< null: 0
   const float* tmax;      ///< null: +inf

@@ -911,7 +911,7 @@ const DetScene kScenes[] = {
 #if defined(GYRO_HAS_SPATIAL)
     {"mesh_bvh", scene_mesh_bvh, 0x443954b2125dc999ull},
     {"camera_frustum", scene_camera_frustum, 0x246ff5bf8a6a766cull},
-    {"scene_models", scene_models, 0x8a6af0034215bd71ull},
+    {"scene_models", scene_models, 0xfc20defafa7aa0fbull},
     {"rays_one_origin", scene_rays_one_origin, 0x4ee4f0393c05adbaull},
     {"mesh_slivers", scene_mesh_slivers, 0xa80aeab449555782ull},
 #endif
