@@ -1,8 +1,8 @@
 // BVH construction: a binary tree by binned SAH (Wald, "On fast construction of SAH-based
 // bounding volume hierarchies", 2007) over the triangles' bounding-box centroids, then
 // collapsed into 8-wide nodes by repeatedly opening the child with the largest surface area
-// (the usual BVH2-to-BVHn collapse), with triangles (or a scene's items) packed into 4-wide
-// leaf blocks.
+// (the usual BVH2-to-BVHn collapse), with triangles packed into 4-wide leaf blocks (a
+// scene's items: kBoxBvhLeafItems to a block).
 //
 // Determinism: every decision is a function of float values and indices only (ties go to
 // the lower axis, the lower bin, the earlier child); partitions are stable and the median
