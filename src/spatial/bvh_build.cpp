@@ -39,6 +39,7 @@ namespace gyro::detail {
 namespace {
 
 constexpr int kBins = 32;
+constexpr uint32_t kMeshLeafTriangles = 4;  // BvhLeaf4's lanes
 // Subtrees of at most kTaskPrims primitives are built as parallel tasks (R2's 522k
 // triangles make 182); the top's levels work in chunks of kChunkPrims.
 constexpr uint32_t kTaskPrims = 4096;
@@ -132,32 +133,45 @@ template <class Node> Node empty_node() {
 // count (no branch on the keys: on the scene refit's unpredictable orders this ran 4% faster
 // than two insertion sorts per pair, tests/spatial/bvh_refit_test.cpp holds both to the
 // definition above); the empty slots come last, in slot order.
-inline void set_orders(BvhNode8& n) {
-  double c[3][8];
-  int used[8], m = 0;
+//
+// OrderKeys holds what both the sort (set_orders) and its check (orders_hold) read, so the
+// two cannot disagree on a key's bits.
+struct OrderKeys {
+  // key[o][k]: slot k's key for octant o < 4, ((0 + s_x c_x) + s_y c_y) + c_z. Every slot
+  // without a branch (the loops vectorise): an empty slot's bounds (+inf, -inf) sum to a NaN
+  // centre, so its keys are NaN.
+  double key[4][8];
+  int used[8], m = 0;    // the used slots in slot order, and how many
   uint32_t empties = 0;  // the empty slots' nibbles, last in every order, in slot order
-  for (int k = 0, e = 0; k < 8; ++k) {
-    if (n.child[k] == kEmptyChild) {
-      empties |= uint32_t(k) << (4 * e++);
-      continue;
+  explicit OrderKeys(const BvhNode8& n) {
+    double c[3][8];
+    for (int a = 0; a < 3; ++a)
+      for (int k = 0; k < 8; ++k) c[a][k] = double(n.bounds[2 * a][k]) + double(n.bounds[2 * a + 1][k]);
+    for (int k = 0; k < 8; ++k) {
+      key[0][k] = ((0.0 + c[0][k]) + c[1][k]) + c[2][k];
+      key[1][k] = ((0.0 - c[0][k]) + c[1][k]) + c[2][k];
+      key[2][k] = ((0.0 + c[0][k]) - c[1][k]) + c[2][k];
+      key[3][k] = ((0.0 - c[0][k]) - c[1][k]) + c[2][k];
     }
-    used[m++] = k;
-    for (int a = 0; a < 3; ++a) c[a][k] = double(n.bounds[2 * a][k]) + double(n.bounds[2 * a + 1][k]);
+    for (int k = 0, e = 0; k < 8; ++k) {
+      if (n.child[k] == kEmptyChild) empties |= uint32_t(k) << (4 * e++);
+      else used[m++] = k;
+    }
+    if (m < 8) empties <<= 4 * m;  // with none empty, a shift by 32 would be undefined
   }
-  if (m < 8) empties <<= 4 * m;  // with none empty, a shift by 32 would be undefined
-  // Octant O (bit 2 clear) and 7 - O; the signs are constants of each instance. A slot's
-  // place in O: the keys below its own plus the equal ones of lower slots; in 7 - O: the
-  // keys above its own plus, again, the equal ones of lower slots.
+};
+
+inline void set_orders(BvhNode8& n) {
+  const OrderKeys keys(n);
+  const int m = keys.m;
+  const int* used = keys.used;
+  const uint32_t empties = keys.empties;
+  // Octant O (bit 2 clear) and 7 - O. A slot's place in O: the keys below its own plus the
+  // equal ones of lower slots; in 7 - O: the keys above its own plus, again, the equal ones
+  // of lower slots.
   const auto octant = [&]<int O>() {
     double key[8];
-    for (int i = 0; i < m; ++i) {
-      const int k = used[i];
-      double v = 0.0;
-      v += O & 1 ? -c[0][k] : c[0][k];
-      v += O & 2 ? -c[1][k] : c[1][k];
-      v += c[2][k];
-      key[i] = v;
-    }
+    for (int i = 0; i < m; ++i) key[i] = keys.key[O][used[i]];
     int below[8] = {}, equal_before[8] = {}, equal_after[8] = {};
     for (int j = 0; j < m; ++j)
       for (int i = j + 1; i < m; ++i) {
@@ -183,26 +197,11 @@ inline void set_orders(BvhNode8& n) {
 // changes). The order by (key, slot) is total, so the used slots in strictly ascending
 // order, then the empty slots in slot order, is the one sequence the sort can give.
 inline bool orders_hold(const BvhNode8& n) {
-  // Every slot's keys, without a branch (the loops vectorise): an empty slot's bounds
-  // (+inf, -inf) sum to a NaN centre, so its keys are NaN, and an order naming it fails the
-  // comparisons below.
-  double c[3][8], key[4][8];
-  for (int a = 0; a < 3; ++a)
-    for (int k = 0; k < 8; ++k) c[a][k] = double(n.bounds[2 * a][k]) + double(n.bounds[2 * a + 1][k]);
-  // set_orders' sums, in its order: ((0 + s_x c_x) + s_y c_y) + c_z.
-  for (int k = 0; k < 8; ++k) {
-    key[0][k] = ((0.0 + c[0][k]) + c[1][k]) + c[2][k];
-    key[1][k] = ((0.0 - c[0][k]) + c[1][k]) + c[2][k];
-    key[2][k] = ((0.0 + c[0][k]) - c[1][k]) + c[2][k];
-    key[3][k] = ((0.0 - c[0][k]) - c[1][k]) + c[2][k];
-  }
-  uint32_t empties = 0;
-  int m = 0;
-  for (int k = 0, e = 0; k < 8; ++k) {
-    if (n.child[k] == kEmptyChild) empties |= uint32_t(k) << (4 * e++);
-    else ++m;
-  }
-  if (m < 8) empties <<= 4 * m;
+  // An order naming an empty slot finds its NaN key, which fails the comparisons below.
+  const OrderKeys keys(n);
+  const auto& key = keys.key;
+  const int m = keys.m;
+  const uint32_t empties = keys.empties;
   const uint32_t tail = m < 8 ? ~0u << (4 * m) : 0u;
   if (m == 0) {
     for (const uint32_t order : n.order)
@@ -766,7 +765,7 @@ struct MeshLeaf {
   const MeshData& mesh;
   void operator()(BvhLeaf4& leaf, const uint32_t* tris, uint32_t count) const {
     const float nan = __builtin_nanf("");
-    for (int k = 0; k < 4; ++k) {
+    for (int k = 0; k < int(kMeshLeafTriangles); ++k) {
       if (uint32_t(k) < count) {
         const uint32_t t = tris[k];
         for (int c = 0; c < 3; ++c) {
@@ -825,7 +824,7 @@ Bvh8 build_bvh8(const MeshData& mesh) {
       prims[i] = box;
     }
   });
-  return Builder(std::move(prims), 4).run<Bvh8>(MeshLeaf{mesh});
+  return Builder(std::move(prims), kMeshLeafTriangles).run<Bvh8>(MeshLeaf{mesh});
 }
 
 BoxBvh8 build_box_bvh8(const BvhBox* boxes, std::size_t count) {

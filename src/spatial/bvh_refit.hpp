@@ -7,8 +7,8 @@
 // not depend on the order of their operands (the boxes have no signed zeros: lo = c - h - pad
 // and hi = c + h + pad are never -0), so refitting only the marked nodes gives the same bytes
 // as recomputing every node, and as the build gave for a subtree that did not move. The
-// expected ray cost is summed over every node and leaf block in index order with the build's
-// formula, so it too is the full refit's, to the bit.
+// expected ray cost comes from every node's and leaf block's area through the build's
+// formula (detail::sah_cost, a fixed order of sums), so it too is the full refit's, to the bit.
 #pragma once
 
 #include "spatial/bvh.hpp"

@@ -743,12 +743,12 @@ SceneStats Scene::stats() const {
 // ------------------------------------------------------------------------ raycasts
 //
 // Rays go in blocks: the planes here (scalar), the tree in the per-level kernel of
-// scene_kernels.cpp (spheres and boxes four at a time in lanes, meshes through exact_t
-// below, eight rays taking turns in a large tree), then the winner's point, normal, triangle
-// and barycentrics here, computed once per ray. Under the octree the kernel walks the
-// octree's node form (octree_bvh.hpp): the Cookbook's scalar walk of the octree, one child
-// box and one model at a time, ran R1 at 1.1 Mrays/s, the kernel on the same octree at 4.3
-// (one thread). Both modes give the brute-force loop's bits (the header comment).
+// scene_kernels.cpp (one model per leaf, spheres and boxes by their scalar tests, meshes
+// through exact_t below, eight rays taking turns), then the winner's point, normal,
+// triangle and barycentrics here, computed once per ray. Under the octree the kernel walks
+// the octree's node form (octree_bvh.hpp): the Cookbook's scalar walk of the octree, one
+// child box and one model at a time, ran R1 at 1.1 Mrays/s, the kernel on the same octree
+// at 5.3-5.8 (one thread). Both modes give the brute-force loop's bits (the header comment).
 
 namespace {
 

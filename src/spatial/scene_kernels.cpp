@@ -30,8 +30,8 @@
 // instructions and was slower in 5 of 6 alternating R1 runs (median -6%). Rays from one
 // origin (closest hit) walk in packets of eight through the walk both kernels share
 // (packet_walk.hpp; sharing it cost the LIDAR packets 2% more instructions).
-// Any hit: the walk stops at the first hit, a leaf's items tried in lane order and the
-// nodes in their stored order, so the model it names is the same at every level, thread
+// Any hit: the walk stops at the first hit, the nodes taken in their stored order (a leaf
+// is one model), so the model it names is the same at every level, thread
 // count and prefetch mode (another tree, the octree's, may name another; gyro/scene.hpp
 // promises no more than that).
 #include "geometry/ray_lanes.hpp"

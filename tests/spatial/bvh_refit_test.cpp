@@ -70,19 +70,32 @@ BvhNode8 random_node(SplitMix64& rng, int kind) {
   return n;
 }
 
-TEST(BvhOrders, EqualEightIndependentSorts) {
-  SplitMix64 rng(41);
-  std::size_t checked = 0, with_ties = 0;
+// f(it, kind, node) for 60000 random nodes of every kind in turn, their orders set by the
+// code under test.
+template <class F> void each_sorted_node(uint64_t seed, F&& f) {
+  SplitMix64 rng(seed);
   for (int it = 0; it < 60000; ++it) {
     const int kind = it % 4;
     BvhNode8 n = random_node(rng, kind);
-    BvhNode8 ref = n;
     detail::set_child_orders(n);
-    reference_orders(ref);
+    f(it, kind, n, rng);
+  }
+}
+
+// n's orders recomputed by their definition.
+BvhNode8 with_reference_orders(BvhNode8 n) {
+  reference_orders(n);
+  return n;
+}
+
+TEST(BvhOrders, EqualEightIndependentSorts) {
+  std::size_t checked = 0, with_ties = 0;
+  each_sorted_node(41, [&](int it, int kind, const BvhNode8& n, SplitMix64&) {
+    const BvhNode8 ref = with_reference_orders(n);
     for (int o = 0; o < 8; ++o) ASSERT_EQ(n.order[o], ref.order[o]) << "node " << it << " octant " << o;
     ++checked;
     with_ties += kind == 0 || kind == 3;
-  }
+  });
   EXPECT_EQ(checked, 60000u);
   EXPECT_GT(with_ties, 20000u);
 }
@@ -91,12 +104,8 @@ TEST(BvhOrders, EqualEightIndependentSorts) {
 // give: it must say so exactly then. Nodes whose orders were set, then some slots moved (the
 // order kept or not), or the stored orders scrambled.
 TEST(BvhOrders, HoldExactlyWhenTheSortWouldGiveThem) {
-  SplitMix64 rng(47);
   std::size_t kept = 0, changed = 0;
-  for (int it = 0; it < 60000; ++it) {
-    const int kind = it % 4;
-    BvhNode8 n = random_node(rng, kind);
-    detail::set_child_orders(n);
+  each_sorted_node(47, [&](int it, int kind, BvhNode8 n, SplitMix64& rng) {
     ASSERT_TRUE(detail::child_orders_hold(n)) << "node " << it;
     const int how = int(rng.next() % 4);
     if (how == 0) {  // one used slot moved anywhere (same kind of values)
@@ -118,13 +127,12 @@ TEST(BvhOrders, HoldExactlyWhenTheSortWouldGiveThem) {
     } else {  // a nibble set to a value no slot has
       n.order[rng.next() % 8] |= 8u << (4 * (rng.next() % 8));
     }
-    BvhNode8 ref = n;
-    reference_orders(ref);
+    const BvhNode8 ref = with_reference_orders(n);
     bool same = true;
     for (int o = 0; o < 8; ++o) same = same && n.order[o] == ref.order[o];
     ASSERT_EQ(detail::child_orders_hold(n), same) << "node " << it << " change " << how;
     (same ? kept : changed) += 1;
-  }
+  });
   EXPECT_GT(kept, 10000u);
   EXPECT_GT(changed, 10000u);
 }
