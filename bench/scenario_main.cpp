@@ -32,7 +32,7 @@ const Workload kWorkloads[] = {
     {"G1", "geometry kernels per SIMD level: pairwise overlaps (10^6 pairs), brute-force raycasts", run_g1},
     {"R1", "10^6 rays x 10k spheres, closest hit (gyro: brute force on 20k rays); peers: Embree sphere points, Bullet",
      run_r1},
-    {"R1M", "R1's spheres as scene models, 120 frames moving 10%, 1%, 0.1% of them: prepare() refit vs rebuild, rays on "
+    {"R1M", "R1's spheres as scene models, 120 frames moving all, 10%, 1%, 0.1% of them: prepare() refit vs rebuild, rays on "
      "the refit tree vs a fresh one", run_r1m},
     {"R2", "10^6 rays onto a 522k-triangle terrain, closest hit through gyro's BVH; peers: Embree, Bullet", run_r2},
     {"LIDAR", "64 x 2048 lidar fan inside the R2 terrain, tmax 120; peers: Embree, Bullet", run_lidar},

@@ -164,9 +164,9 @@ struct SceneSettings {
   /// A refit, like the world transforms before it, redoes only what the moves since the
   /// last query touched: the moved models and their descendants, the leaves holding them and
   /// the nodes above those. On R1's 10^4 spheres (one thread, gyro-bench R1M), prepare()
-  /// after moving a tenth of them takes 0.16-0.22 ms, a hundredth 0.024-0.028 ms, a
-  /// thousandth 0.005-0.006 ms, against 3.8-4.0 ms for a rebuild (Embree's refit of the same
-  /// spheres: 0.084 ms whatever moved). Rays on a refit tree run up to about a fifth slower than on a fresh one
+  /// after moving all of them takes 0.40 ms, a tenth 0.12 ms, a hundredth 0.021 ms, a
+  /// thousandth 0.0055 ms, against 4.0 ms for a rebuild (Embree's refit of the same
+  /// spheres: 0.080-0.086 ms whatever moved). Rays on a refit tree run up to about a fifth slower than on a fresh one
   /// (set false where rays dominate a frame). Answers are the same
   /// either way, except which model an any-hit names: that follows the tree, so the
   /// sequence of calls (deterministic, like every result), not the models alone. False:

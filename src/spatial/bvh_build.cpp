@@ -238,7 +238,9 @@ inline bool orders_hold(const BvhNode8& n) {
     for (int j = 0; j < 8; ++j) g[j] = key[o][front >> (4 * j) & 7u];
     uint32_t rising = 0;
     for (int j = 0; j < 7; ++j) rising |= uint32_t(g[j] < g[j + 1]) << j;
-    const bool strict = (rising & want) == want && (front & tail) == empties && (front & 0x88888888u) == 0;
+    // The first key ordered: with one used slot there is no pair to compare, and its nibble
+    // must still name it.
+    const bool strict = g[0] == g[0] && (rising & want) == want && (front & tail) == empties && (front & 0x88888888u) == 0;
     if (!strict && !ascending(front, key[o], false, ties)) return false;
     if (!ties) {
       uint32_t rev = __builtin_bswap32(front);

@@ -86,7 +86,7 @@ void BvhRefit::clear_marks() {
 
 std::size_t BvhRefit::bytes() const {
   return (item_leaf_.capacity() + leaf_parent_.capacity() + node_parent_.capacity() + marked_nodes_.capacity() +
-          marked_leaves_.capacity()) * sizeof(uint32_t) +
+          marked_leaves_.capacity() + order_nodes_.capacity()) * sizeof(uint32_t) +
          (node_area_.capacity() + leaf_area_.capacity()) * sizeof(double) + node_mark_.capacity() + leaf_mark_.capacity() +
          node_box_.capacity() * sizeof(BoxUnion) + node_changed_.capacity();
 }

@@ -4,6 +4,7 @@
 // take their shortcuts (one sort per pair of opposite octants; slots whose child did not move,
 // nodes whose slots did not change) on the claim that they give these bytes.
 #include "spatial/bvh.hpp"
+#include "spatial/bvh_orders.hpp"
 #include "spatial/bvh_refit.hpp"
 #include "workloads.hpp"
 
@@ -100,41 +101,102 @@ TEST(BvhOrders, EqualEightIndependentSorts) {
   EXPECT_GT(with_ties, 20000u);
 }
 
+// Changes n as a refit or a corrupted node might (`how` in 0..4): one used slot moved anywhere
+// (same kind of values), every bound nudged by an ulp or two, two nibbles of one order swapped,
+// a nibble set to a value no slot has, or the first nibble of an octant and of its opposite
+// set to the same other slot (with one used slot, an empty one: no pair of keys to compare).
+void disturb(SplitMix64& rng, int kind, BvhNode8& n, int how) {
+  if (how == 0) {
+    const int start = int(rng.next() % 8);
+    for (int j = 0; j < 8; ++j)  // a node may have no used slot
+      if (const int k = (start + j) % 8; n.child[k] != detail::kEmptyChild) {
+        random_slot(rng, kind, n, k);
+        break;
+      }
+  } else if (how == 1) {
+    for (auto& row : n.bounds)
+      for (float& v : row)
+        if (v == v && v != __builtin_inff() && v != -__builtin_inff())
+          for (int s = int(rng.next() % 3); s > 0; --s) v = std::nextafter(v, rng.next() % 2 ? 1e38f : -1e38f);
+  } else if (how == 2) {
+    const int o = int(rng.next() % 8), i = int(rng.next() % 8), j = int(rng.next() % 8);
+    const uint32_t a = n.order[o] >> (4 * i) & 15u, b = n.order[o] >> (4 * j) & 15u;
+    n.order[o] &= ~((15u << (4 * i)) | (15u << (4 * j)));
+    n.order[o] |= b << (4 * i) | a << (4 * j);
+  } else if (how == 3) {
+    n.order[rng.next() % 8] |= 8u << (4 * (rng.next() % 8));
+  } else {
+    const int o = int(rng.next() % 4);
+    const uint32_t other = ((n.order[o] & 7u) + 1u + uint32_t(rng.next() % 7)) % 8u;
+    n.order[o] = (n.order[o] & ~15u) | other, n.order[7 - o] = (n.order[7 - o] & ~15u) | other;
+  }
+}
+
+// Nodes with one used slot, the rest empty: the case where a check has no pair of keys and
+// must still find the slot its first nibble names.
+BvhNode8 one_slot_node(SplitMix64& rng, int kind) {
+  BvhNode8 n = detail::empty_node8();
+  const int k = int(rng.next() % 8);
+  random_slot(rng, kind, n, k);
+  n.child[k] = uint32_t(k);
+  detail::set_child_orders(n);
+  return n;
+}
+
+bool same_orders(const BvhNode8& a, const BvhNode8& b) {
+  for (int o = 0; o < 8; ++o)
+    if (a.order[o] != b.order[o]) return false;
+  return true;
+}
+
 // A refit keeps a node's orders when child_orders_hold() says they are what the sort would
-// give: it must say so exactly then. Nodes whose orders were set, then some slots moved (the
-// order kept or not), or the stored orders scrambled.
+// give: it must say so exactly then. Nodes whose orders were set, then disturbed (the order
+// kept or not).
 TEST(BvhOrders, HoldExactlyWhenTheSortWouldGiveThem) {
   std::size_t kept = 0, changed = 0;
   each_sorted_node(47, [&](int it, int kind, BvhNode8 n, SplitMix64& rng) {
     ASSERT_TRUE(detail::child_orders_hold(n)) << "node " << it;
-    const int how = int(rng.next() % 4);
-    if (how == 0) {  // one used slot moved anywhere (same kind of values)
-      for (int k = int(rng.next() % 8); ; k = (k + 1) % 8)
-        if (n.child[k] != detail::kEmptyChild) {
-          random_slot(rng, kind, n, k);
-          break;
-        }
-    } else if (how == 1) {  // every bound nudged by an ulp or two
-      for (auto& row : n.bounds)
-        for (float& v : row)
-          if (v == v && v != __builtin_inff() && v != -__builtin_inff())
-            for (int s = int(rng.next() % 3); s > 0; --s) v = std::nextafter(v, rng.next() % 2 ? 1e38f : -1e38f);
-    } else if (how == 2) {  // two nibbles of one order swapped
-      const int o = int(rng.next() % 8), i = int(rng.next() % 8), j = int(rng.next() % 8);
-      const uint32_t a = n.order[o] >> (4 * i) & 15u, b = n.order[o] >> (4 * j) & 15u;
-      n.order[o] &= ~((15u << (4 * i)) | (15u << (4 * j)));
-      n.order[o] |= b << (4 * i) | a << (4 * j);
-    } else {  // a nibble set to a value no slot has
-      n.order[rng.next() % 8] |= 8u << (4 * (rng.next() % 8));
-    }
-    const BvhNode8 ref = with_reference_orders(n);
-    bool same = true;
-    for (int o = 0; o < 8; ++o) same = same && n.order[o] == ref.order[o];
+    const int how = int(rng.next() % 5);
+    disturb(rng, kind, n, how);
+    const bool same = same_orders(n, with_reference_orders(n));
     ASSERT_EQ(detail::child_orders_hold(n), same) << "node " << it << " change " << how;
     (same ? kept : changed) += 1;
+    BvhNode8 one = one_slot_node(rng, kind);
+    ASSERT_TRUE(detail::child_orders_hold(one)) << "node " << it;
+    disturb(rng, kind, one, 4);
+    ASSERT_FALSE(detail::child_orders_hold(one)) << "node " << it;
   });
   EXPECT_GT(kept, 10000u);
   EXPECT_GT(changed, 10000u);
+}
+
+// The refit's refresh of changed nodes' orders (bvh_orders.hpp) leaves exactly the sort's
+// orders, and nothing else changed, at every SIMD level the machine has: whether its fast
+// check clears a node or sends it to the sort, for nodes disturbed as above.
+TEST(BvhOrders, RefreshLeavesTheSortsOrdersAtEveryLevel) {
+  int levels = 0;
+  for (SimdLevel level : {SimdLevel::scalar, SimdLevel::sse2, SimdLevel::avx2, SimdLevel::avx512, SimdLevel::neon}) {
+    if (!simd_level_available(level)) continue;
+    ++levels;
+    std::size_t kept = 0, changed = 0;
+    each_sorted_node(59, [&](int it, int kind, BvhNode8 n, SplitMix64& rng) {
+      BvhNode8 nodes[2] = {n, one_slot_node(rng, kind)};
+      disturb(rng, kind, nodes[0], int(rng.next() % 5));
+      disturb(rng, kind, nodes[1], int(rng.next() % 5));
+      for (const BvhNode8& node : nodes) (same_orders(node, with_reference_orders(node)) ? kept : changed) += 1;
+      const uint32_t which[2] = {1, 0};
+      BvhNode8 refreshed[2] = {nodes[0], nodes[1]};
+      detail::bvh_orders_refresh_for(level)(refreshed, which, 2);
+      for (int k = 0; k < 2; ++k) {
+        BvhNode8 want = with_reference_orders(nodes[k]);
+        ASSERT_EQ(std::memcmp(&refreshed[k], &want, sizeof(BvhNode8)), 0)
+            << simd_level_name(level) << " node " << it << " slot node " << k;
+      }
+    });
+    EXPECT_GT(kept, 20000u) << simd_level_name(level);
+    EXPECT_GT(changed, 20000u) << simd_level_name(level);
+  }
+  EXPECT_GE(levels, 2);
 }
 
 struct Item {

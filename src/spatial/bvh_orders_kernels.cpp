@@ -1,0 +1,208 @@
+// bvh_orders_refresh at this translation unit's SIMD level (bvh_orders.hpp).
+//
+// The AVX levels first ask whether a node's stored orders certainly hold: for each of the
+// octants 0 to 3, the used slots' keys gathered in the stored order strictly ascend, the empty
+// slots follow in slot order, and the opposite octant's order is the same used slots
+// reversed. Strictly ascending keys cannot tie, and octant 7 - o's keys are octant o's negated
+// (bvh_build.cpp, OrderKeys), so that is the sort's answer for all eight. Anything else (an
+// order that no longer sorts, tied keys, a stored nibble naming a wrong slot) goes to the
+// sort, which writes what the build would. The keys are OrderKeys' expressions lane by lane
+// in binary64, so the same bits, and the check only decides whether the sort runs: every
+// level leaves the sort's bytes. The other levels call the portable check
+// (detail::child_orders_hold) and sort.
+#include "spatial/bvh_orders.hpp"
+
+#include "core/lane_compact.hpp"
+
+#if defined(GYRO_ARCH_AVX2) || defined(GYRO_ARCH_AVX512)
+#include <immintrin.h>
+#endif
+
+namespace gyro::GYRO_ARCH_NS {
+namespace {
+
+using detail::BvhNode8;
+
+#if defined(GYRO_ARCH_AVX2) || defined(GYRO_ARCH_AVX512)
+
+// The slots of a node, and the stored-order words its empty slots must end every order with.
+struct Slots {
+  unsigned used;     // bit k: slot k holds a child
+  int m;             // how many do
+  uint32_t empties;  // the empty slots' nibbles, in slot order, from nibble m up
+  uint32_t tail;     // the nibbles from m up
+};
+
+inline Slots slots_in(const BvhNode8& n) {
+  const __m256i child = _mm256_load_si256(reinterpret_cast<const __m256i*>(n.child));
+  const unsigned empty = unsigned(_mm256_movemask_ps(
+      _mm256_castsi256_ps(_mm256_cmpeq_epi32(child, _mm256_set1_epi32(int(detail::kEmptyChild))))));
+  Slots s;
+  s.used = ~empty & 255u;
+  s.m = int(compact_count(s.used));
+  // kCompact8: byte j the j-th empty slot (byte 0's high nibble a count, cleared here); the
+  // bytes folded into nibbles.
+  uint64_t v = kCompact8[empty] & 0x0707070707070707ull;
+  v = (v | v >> 4) & 0x00FF00FF00FF00FFull;
+  v = (v | v >> 8) & 0x0000FFFF0000FFFFull;
+  v = (v | v >> 16) & 0xFFFFFFFFull;
+  s.empties = s.m < 8 ? uint32_t(v) << (4 * s.m) : 0u;
+  s.tail = s.m < 8 ? ~0u << (4 * s.m) : 0u;
+  return s;
+}
+
+// The used slots' nibbles of `order` reversed (nibble j to m - 1 - j), the empty ones dropped.
+inline uint32_t reversed_used(uint32_t order, int m) {
+  uint32_t rev = __builtin_bswap32(order);
+  rev = (rev & 0x0F0F0F0Fu) << 4 | (rev >> 4 & 0x0F0F0F0Fu);  // nibble j at 7 - j
+  return rev >> (4 * (8 - m));                                 // 1 <= m <= 8
+}
+
+// Whether the stored order of octant o and 7 - o pass every test but the keys' (which the
+// level's gather does): no nibble past 7, the empty slots last in slot order, the first
+// nibble a used slot (with one used slot there is no pair to compare), and the opposite
+// octant's order the used ones reversed.
+inline bool words_fit(const Slots& s, uint32_t front, uint32_t back) {
+  return ((front & 0x88888888u) | ((front & s.tail) ^ s.empties)) == 0 && (s.used >> (front & 7u) & 1u) != 0 &&
+         back == (reversed_used(front, s.m) | s.empties);
+}
+
+// A node with no used slot: every order is the slots in slot order.
+inline bool only_empties(const BvhNode8& n, const Slots& s) {
+  for (const uint32_t order : n.order)
+    if (order != s.empties) return false;
+  return true;
+}
+
+#if defined(GYRO_ARCH_AVX512)
+
+// OrderKeys' keys of octants 0 to 3, lane k slot k (an empty slot's: NaN).
+struct Keys {
+  __m512d key[4];
+  explicit Keys(const BvhNode8& n) {
+    __m512d c[3];  // the centres' doubles, lo + hi (exact)
+    for (int a = 0; a < 3; ++a)
+      c[a] = _mm512_add_pd(_mm512_cvtps_pd(_mm256_load_ps(n.bounds[2 * a])), _mm512_cvtps_pd(_mm256_load_ps(n.bounds[2 * a + 1])));
+    const __m512d zero = _mm512_setzero_pd();
+    const __m512d px = _mm512_add_pd(zero, c[0]), nx = _mm512_sub_pd(zero, c[0]);
+    key[0] = _mm512_add_pd(_mm512_add_pd(px, c[1]), c[2]);
+    key[1] = _mm512_add_pd(_mm512_add_pd(nx, c[1]), c[2]);
+    key[2] = _mm512_add_pd(_mm512_sub_pd(px, c[1]), c[2]);
+    key[3] = _mm512_add_pd(_mm512_sub_pd(nx, c[1]), c[2]);
+  }
+};
+
+inline bool orders_certainly_hold(const BvhNode8& n) {
+  const Slots s = slots_in(n);
+  if (s.m == 0) return only_empties(n, s);
+  const Keys k(n);
+  const __m512d* key = k.key;
+  const unsigned want = (1u << (s.m - 1)) - 1u;  // the adjacent pairs among the used slots
+  const __m256i shifts = _mm256_setr_epi32(0, 4, 8, 12, 16, 20, 24, 28);
+  const __m512i next = _mm512_setr_epi64(1, 2, 3, 4, 5, 6, 7, 7);
+  for (int o = 0; o < 4; ++o) {
+    const uint32_t front = n.order[o];
+    if (!words_fit(s, front, n.order[7 - o])) return false;
+    const __m256i slot = _mm256_and_si256(_mm256_srlv_epi32(_mm256_set1_epi32(int(front)), shifts), _mm256_set1_epi32(7));
+    const __m512d g = _mm512_permutexvar_pd(_mm512_cvtepu32_epi64(slot), key[o]);  // the keys in the stored order
+    const unsigned rising = unsigned(_mm512_cmp_pd_mask(g, _mm512_permutexvar_pd(next, g), _CMP_LT_OQ));
+    if ((rising & want) != want) return false;
+  }
+  return true;
+}
+
+// The octant orders by ranks, as set_orders() defines them: in octant o, used slot i goes to
+// place #{j: key_j < key_i} + #{j < i: key_j == key_i}; in octant 7 - o (keys negated) to
+// #{j: key_j > key_i} + #{j < i: key_j == key_i}. An empty slot's NaN key compares false with
+// everything, so it counts for no one; the empty slots fill the places from m up in slot order.
+inline void sort_orders(BvhNode8& n) {
+  const Slots s = slots_in(n);
+  const Keys k(n);
+  const __m512i one = _mm512_set1_epi64(1), slot = _mm512_setr_epi64(0, 1, 2, 3, 4, 5, 6, 7);
+  const auto word = [&](__m512i place) {  // the used slots' nibbles at their places
+    const __m512i nibbles = _mm512_maskz_sllv_epi64(__mmask8(s.used), slot, _mm512_slli_epi64(place, 2));
+    return uint32_t(_mm512_reduce_or_epi64(nibbles)) | s.empties;
+  };
+  for (int o = 0; o < 4; ++o) {
+    const __m512d key = k.key[o];
+    __m512i front = _mm512_setzero_si512(), back = _mm512_setzero_si512();
+    for (int j = 0; j < 8; ++j) {
+      if (!(s.used >> j & 1u)) continue;
+      const __m512d kj = _mm512_permutexvar_pd(_mm512_set1_epi64(j), key);
+      const __mmask8 after = __mmask8(0xFF00u >> (7 - j));  // the lanes i > j
+      const __mmask8 tie = _mm512_cmp_pd_mask(kj, key, _CMP_EQ_OQ) & after;
+      front = _mm512_mask_add_epi64(front, _mm512_cmp_pd_mask(kj, key, _CMP_LT_OQ) | tie, front, one);
+      back = _mm512_mask_add_epi64(back, _mm512_cmp_pd_mask(kj, key, _CMP_GT_OQ) | tie, back, one);
+    }
+    n.order[o] = word(front), n.order[7 - o] = word(back);
+  }
+}
+
+#else  // AVX2: eight doubles in two registers, gathered by 32-bit permutes of their halves
+
+inline bool orders_certainly_hold(const BvhNode8& n) {
+  const Slots s = slots_in(n);
+  if (s.m == 0) return only_empties(n, s);
+  __m256d c[3][2];  // the centres' doubles, lo + hi (exact), slots 0-3 and 4-7
+  for (int a = 0; a < 3; ++a) {
+    const __m256 lo = _mm256_load_ps(n.bounds[2 * a]), hi = _mm256_load_ps(n.bounds[2 * a + 1]);
+    c[a][0] = _mm256_add_pd(_mm256_cvtps_pd(_mm256_castps256_ps128(lo)), _mm256_cvtps_pd(_mm256_castps256_ps128(hi)));
+    c[a][1] = _mm256_add_pd(_mm256_cvtps_pd(_mm256_extractf128_ps(lo, 1)), _mm256_cvtps_pd(_mm256_extractf128_ps(hi, 1)));
+  }
+  __m256 key[4][2];  // as floats' bits, for the 32-bit permutes
+  const __m256d zero = _mm256_setzero_pd();
+  for (int h = 0; h < 2; ++h) {
+    const __m256d px = _mm256_add_pd(zero, c[0][h]), nx = _mm256_sub_pd(zero, c[0][h]);
+    key[0][h] = _mm256_castpd_ps(_mm256_add_pd(_mm256_add_pd(px, c[1][h]), c[2][h]));
+    key[1][h] = _mm256_castpd_ps(_mm256_add_pd(_mm256_add_pd(nx, c[1][h]), c[2][h]));
+    key[2][h] = _mm256_castpd_ps(_mm256_add_pd(_mm256_sub_pd(px, c[1][h]), c[2][h]));
+    key[3][h] = _mm256_castpd_ps(_mm256_add_pd(_mm256_sub_pd(nx, c[1][h]), c[2][h]));
+  }
+  const unsigned want = (1u << (s.m - 1)) - 1u;
+  // 32-bit lane 2i + b of half h reads position 4h + i's slot, its half b.
+  const __m256i shifts[2] = {_mm256_setr_epi32(0, 0, 4, 4, 8, 8, 12, 12), _mm256_setr_epi32(16, 16, 20, 20, 24, 24, 28, 28)};
+  const __m256i odd = _mm256_setr_epi32(0, 1, 0, 1, 0, 1, 0, 1);
+  for (int o = 0; o < 4; ++o) {
+    const uint32_t front = n.order[o];
+    if (!words_fit(s, front, n.order[7 - o])) return false;
+    const __m256i word = _mm256_set1_epi32(int(front));
+    __m256d g[2];  // the keys in the stored order, positions 0-3 and 4-7
+    for (int h = 0; h < 2; ++h) {
+      const __m256i slot = _mm256_and_si256(_mm256_srlv_epi32(word, shifts[h]), _mm256_set1_epi32(7));
+      const __m256i lane = _mm256_or_si256(_mm256_slli_epi32(_mm256_and_si256(slot, _mm256_set1_epi32(3)), 1), odd);
+      const __m256 high = _mm256_castsi256_ps(_mm256_cmpgt_epi32(slot, _mm256_set1_epi32(3)));
+      g[h] = _mm256_castps_pd(_mm256_blendv_ps(_mm256_permutevar8x32_ps(key[o][0], lane),
+                                               _mm256_permutevar8x32_ps(key[o][1], lane), high));
+    }
+    // The next position's key: positions 1-4 and 5-7 (the last lane compares with itself).
+    const __m256d n0 = _mm256_blend_pd(_mm256_permute4x64_pd(g[0], 0x39), _mm256_permute4x64_pd(g[1], 0x00), 0x8);
+    const __m256d n1 = _mm256_permute4x64_pd(g[1], 0xF9);
+    const unsigned rising = unsigned(_mm256_movemask_pd(_mm256_cmp_pd(g[0], n0, _CMP_LT_OQ))) |
+                            unsigned(_mm256_movemask_pd(_mm256_cmp_pd(g[1], n1, _CMP_LT_OQ))) << 4;
+    if ((rising & want) != want) return false;
+  }
+  return true;
+}
+
+// The portable sort (AVX2 has no 8-lane double compare into a mask; set_child_orders()).
+inline void sort_orders(BvhNode8& n) { detail::set_child_orders(n); }
+
+#endif
+
+#else  // the scalar and SSE2 levels: the portable check and sort
+
+inline bool orders_certainly_hold(const BvhNode8& n) { return detail::child_orders_hold(n); }
+inline void sort_orders(BvhNode8& n) { detail::set_child_orders(n); }
+
+#endif
+
+}  // namespace
+
+void bvh_orders_refresh(BvhNode8* nodes, const uint32_t* which, std::size_t count) {
+  for (std::size_t i = 0; i < count; ++i) {
+    BvhNode8& n = nodes[which[i]];
+    if (!orders_certainly_hold(n)) sort_orders(n);
+  }
+}
+
+}  // namespace gyro::GYRO_ARCH_NS
