@@ -4,8 +4,9 @@
 // few of their orders (13% there, 4% with a tenth moved). Checking an order costs less than
 // sorting it, and the check is mostly gathers and compares of eight binary64 keys, which the
 // AVX levels do in a few permutes (bvh_orders_kernels.cpp). A node the fast check cannot
-// clear (an order that no longer sorts, or tied keys) is sorted by set_child_orders(), whose
-// bytes are the build's: so every level writes the same orders, the sort's.
+// clear (an order that no longer sorts, or tied keys) is sorted again: by ranks in mask
+// compares on AVX-512, by set_child_orders() elsewhere, each giving the build's bytes; so
+// every level writes the same orders, the sort's.
 #pragma once
 
 #include "core/dispatch.hpp"

@@ -92,10 +92,9 @@ struct Keys {
   }
 };
 
-inline bool orders_certainly_hold(const BvhNode8& n) {
-  const Slots s = slots_in(n);
+// The node's slots and keys come from the caller, which hands the same ones to the sort.
+inline bool orders_certainly_hold(const BvhNode8& n, const Slots& s, const Keys& k) {
   if (s.m == 0) return only_empties(n, s);
-  const Keys k(n);
   const __m512d* key = k.key;
   const unsigned want = (1u << (s.m - 1)) - 1u;  // the adjacent pairs among the used slots
   const __m256i shifts = _mm256_setr_epi32(0, 4, 8, 12, 16, 20, 24, 28);
@@ -115,9 +114,7 @@ inline bool orders_certainly_hold(const BvhNode8& n) {
 // place #{j: key_j < key_i} + #{j < i: key_j == key_i}; in octant 7 - o (keys negated) to
 // #{j: key_j > key_i} + #{j < i: key_j == key_i}. An empty slot's NaN key compares false with
 // everything, so it counts for no one; the empty slots fill the places from m up in slot order.
-inline void sort_orders(BvhNode8& n) {
-  const Slots s = slots_in(n);
-  const Keys k(n);
+inline void sort_orders(BvhNode8& n, const Slots& s, const Keys& k) {
   const __m512i one = _mm512_set1_epi64(1), slot = _mm512_setr_epi64(0, 1, 2, 3, 4, 5, 6, 7);
   const auto word = [&](__m512i place) {  // the used slots' nibbles at their places
     const __m512i nibbles = _mm512_maskz_sllv_epi64(__mmask8(s.used), slot, _mm512_slli_epi64(place, 2));
@@ -136,6 +133,12 @@ inline void sort_orders(BvhNode8& n) {
     }
     n.order[o] = word(front), n.order[7 - o] = word(back);
   }
+}
+
+inline void refresh(BvhNode8& n) {
+  const Slots s = slots_in(n);
+  const Keys k(n);
+  if (!orders_certainly_hold(n, s, k)) sort_orders(n, s, k);
 }
 
 #else  // AVX2: eight doubles in two registers, gathered by 32-bit permutes of their halves
@@ -185,24 +188,24 @@ inline bool orders_certainly_hold(const BvhNode8& n) {
 }
 
 // The portable sort (AVX2 has no 8-lane double compare into a mask; set_child_orders()).
-inline void sort_orders(BvhNode8& n) { detail::set_child_orders(n); }
+inline void refresh(BvhNode8& n) {
+  if (!orders_certainly_hold(n)) detail::set_child_orders(n);
+}
 
 #endif
 
 #else  // the scalar and SSE2 levels: the portable check and sort
 
-inline bool orders_certainly_hold(const BvhNode8& n) { return detail::child_orders_hold(n); }
-inline void sort_orders(BvhNode8& n) { detail::set_child_orders(n); }
+inline void refresh(BvhNode8& n) {
+  if (!detail::child_orders_hold(n)) detail::set_child_orders(n);
+}
 
 #endif
 
 }  // namespace
 
 void bvh_orders_refresh(BvhNode8* nodes, const uint32_t* which, std::size_t count) {
-  for (std::size_t i = 0; i < count; ++i) {
-    BvhNode8& n = nodes[which[i]];
-    if (!orders_certainly_hold(n)) sort_orders(n);
-  }
+  for (std::size_t i = 0; i < count; ++i) refresh(nodes[which[i]]);
 }
 
 }  // namespace gyro::GYRO_ARCH_NS
