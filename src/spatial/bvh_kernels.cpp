@@ -28,7 +28,6 @@
 #include "spatial/packet_walk.hpp"
 
 #include <bit>
-#include <utility>
 
 namespace gyro::GYRO_ARCH_NS {
 namespace {
@@ -41,6 +40,12 @@ using detail::kNoTriangle;
 
 constexpr float kInf = __builtin_inff();
 constexpr float kSlabSlack = 0x1p-20f;
+// A box counts as entered where tn <= tf * kSlabScale: the same verdict as tn <= tf +
+// |tf| * kSlabSlack in one multiply instead of three operations. For tf >= 0 both round the
+// same exact value tf * (1 + slack) once (tf * slack, a power of two, is exact above the
+// subnormals, and 1 + slack is a float); for tf < 0 both sides are negative and tn >= tmin
+// >= 0, so neither enters.
+constexpr float kSlabScale = 1.0f + kSlabSlack;
 constexpr float kBestSlack = 0x1p-16f;
 
 struct Entry {
@@ -184,9 +189,10 @@ template <bool AnyHit, bool Turns> inline bool step(const BvhRaycastArgs& a, Wal
     const std::ptrdiff_t* fr = w.far_at;
     const Oct tn = max(slab(nr[0], 0), max(slab(nr[1], 1), max(slab(nr[2], 2), w.tmin8)));
     const Oct tf = min(slab(fr[0], 0), min(slab(fr[1], 1), min(slab(fr[2], 2), Oct(w.limit))));
-    const unsigned mask = lane_bits(tn <= tf + abs(tf) * Oct(kSlabSlack));
+    const auto in = tn <= tf * Oct(kSlabScale);
+    const unsigned mask = Turns ? 0u : lane_bits(in);
     if constexpr (Turns) {
-      w.sp = order::push(node, w.oct, tn, mask, w.stack_code, w.stack_near, w.sp);
+      w.sp = order::push(node, w.oct, tn, in, w.stack_code, w.stack_near, w.sp);
     } else if (mask != 0) {
       float nears[8];
       store(nears, tn);
@@ -321,7 +327,7 @@ inline void walk_packet(const BvhRaycastArgs& a, const std::size_t* idx, Packet&
     const int* fr = P.far_row;
     tn = max(slab(nr[0], 0), max(slab(nr[1], 1), max(slab(nr[2], 2), P.tmin)));
     const Oct tf = min(slab(fr[0], 0), min(slab(fr[1], 1), min(slab(fr[2], 2), limit)));
-    return lane_bits(tn <= tf + abs(tf) * Oct(kSlabSlack));
+    return lane_bits(tn <= tf * Oct(kSlabScale));
   };
   const auto visit = [&](uint32_t code, unsigned mask) {
     const BvhLeaf4& leaf = bvh.leaves[code & ~kLeafBit];
@@ -343,7 +349,6 @@ inline void walk_packet(const BvhRaycastArgs& a, const std::size_t* idx, Packet&
 // Rays [begin, end) taking turns, kInFlight at a time.
 template <bool AnyHit> void run(const BvhRaycastArgs& a, std::size_t begin, std::size_t end) {
   Walk walks[kInFlight];
-  int live[kInFlight], n = 0;
   std::size_t next = begin;
   // Starts the next valid ray on w (invalid ones are answered at once); false when none is left.
   const auto refill = [&](Walk& w) {
@@ -367,21 +372,26 @@ template <bool AnyHit> void run(const BvhRaycastArgs& a, std::size_t begin, std:
     a.t_out[w.ray] = w.best_t;
     a.index_out[w.ray] = w.best_id;
   };
+  int live[kInFlight], n = 0;
   for (int k = 0; k < kInFlight; ++k)
     if (refill(walks[k])) live[n++] = k;
-  // While every walk is live (all but the range's last rays), a round gives each its turn,
-  // eight at a time unrolled: the loop over the live walks mispredicted its exit once a round.
+  // While every walk is live (all but the range's last rays), a round gives each its turn.
+  // The loop is not unrolled, so the visit's code is there once: with the rounds unrolled
+  // eight walks at a time (a copy of the visit each), the kernel was 80 kB of code, more
+  // than the core's instruction cache, and R2 ran about 10% slower on 3% more instructions
+  // (its stated reason, the loop's exit mispredicted once a round, costs less). A flag per
+  // walk, to run the range's last rays in this loop too, cost 2% more instructions and
+  // measured slower.
   if (n == kInFlight) {
-    static_assert(kInFlight % 8 == 0);
     bool all = true, dead[kInFlight] = {};
-    const auto turn = [&](int k) {
-      if (step<AnyHit, true>(a, walks[k])) return;
-      finish(walks[k]);
-      if (!refill(walks[k])) all = false, dead[k] = true;
-    };
-    while (all)
-      for (int g = 0; g < kInFlight; g += 8)
-        [&]<int... K>(std::integer_sequence<int, K...>) { (turn(g + K), ...); }(std::make_integer_sequence<int, 8>{});
+    while (all) {
+#pragma GCC unroll 1
+      for (Walk* w = walks; w != walks + kInFlight; ++w) {
+        if (step<AnyHit, true>(a, *w)) continue;
+        finish(*w);
+        if (!refill(*w)) all = false, dead[w - walks] = true;
+      }
+    }
     n = 0;
     for (int k = 0; k < kInFlight; ++k)
       if (!dead[k]) live[n++] = k;

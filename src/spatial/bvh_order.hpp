@@ -44,25 +44,43 @@ inline unsigned octant(const float inv[3]) {
   return o;
 }
 
-/// Pushes the slots in `mask` of `node` (entry distances in tn), farthest first by
-/// `node.order[oct]`, onto codes/nears at depth sp; returns the new depth.
-inline int push(const detail::BvhNode8& node, unsigned oct, const Oct& tn, unsigned mask, uint32_t* codes, float* nears,
+/// Pushes the slots true in `entered` (an Oct mask) of `node` (entry distances in tn),
+/// farthest first by `node.order[oct]`, onto codes/nears at depth sp; returns the new depth.
+template <class Mask>
+inline int push(const detail::BvhNode8& node, unsigned oct, const Oct& tn, Mask entered, uint32_t* codes, float* nears,
                 int sp) {
 #if defined(GYRO_ARCH_AVX2) || defined(GYRO_ARCH_AVX512)
   // Lane i: the slot that is (7 - i)-th from the front, so the farthest comes first.
   const __m256i back_to_front = _mm256_and_si256(
       _mm256_srlv_epi32(_mm256_set1_epi32(int(node.order[oct])), _mm256_setr_epi32(28, 24, 20, 16, 12, 8, 4, 0)),
       _mm256_set1_epi32(7));
+  const __m256i child = _mm256_load_si256(reinterpret_cast<const __m256i*>(node.child));
+#if defined(GYRO_ARCH_AVX512)
+  const __m256 in = entered.m;
+  // The codes, distances and entered lanes taken in that order, then compacted by the
+  // entered bits (vpcompressd): no table of indices, no mask through a general register, and
+  // the count is a popcnt (avx512f implies it).
+  const __mmask16 in_order = _mm512_mask_test_epi32_mask(
+      0xFF, _mm512_castsi256_si512(_mm256_castps_si256(_mm256_permutevar8x32_ps(in, back_to_front))),
+      _mm512_set1_epi32(-1));
+  const __m512i codes8 = _mm512_castsi256_si512(_mm256_permutevar8x32_epi32(child, back_to_front));
+  const __m512 nears8 = _mm512_castps256_ps512(_mm256_permutevar8x32_ps(tn.v, back_to_front));
+  _mm256_storeu_si256(reinterpret_cast<__m256i*>(codes + sp),
+                      _mm512_castsi512_si256(_mm512_maskz_compress_epi32(in_order, codes8)));
+  _mm256_storeu_ps(nears + sp, _mm512_castps512_ps256(_mm512_maskz_compress_ps(in_order, nears8)));
+  return sp + __builtin_popcount(unsigned(in_order));
+#else
   // Bit i: whether that slot was entered (its mask bit moved to the lane's sign).
+  const unsigned mask = lane_bits(entered);
   const unsigned in_order = unsigned(_mm256_movemask_ps(
       _mm256_castsi256_ps(_mm256_slli_epi32(_mm256_srlv_epi32(_mm256_set1_epi32(int(mask)), back_to_front), 31))));
   const __m256i slots = _mm256_permutevar8x32_epi32(back_to_front, compact_indices(in_order));
-  const __m256i child = _mm256_load_si256(reinterpret_cast<const __m256i*>(node.child));
   _mm256_storeu_si256(reinterpret_cast<__m256i*>(codes + sp), _mm256_permutevar8x32_epi32(child, slots));
-  const __m256 near = tn.v;
-  _mm256_storeu_ps(nears + sp, _mm256_permutevar8x32_ps(near, slots));
+  _mm256_storeu_ps(nears + sp, _mm256_permutevar8x32_ps(tn.v, slots));
   return sp + int(compact_count(in_order));
+#endif
 #else
+  const unsigned mask = lane_bits(entered);
   alignas(32) float near[8];
   store(near, tn);
   const uint32_t o = node.order[oct];

@@ -51,6 +51,7 @@ constexpr std::size_t kRayChunk = 64;
 constexpr float kBoxPad = 0x1p-16f;
 constexpr float kRayPad = 0x1p-17f;
 constexpr float kSlabSlack = 0x1p-18f;
+constexpr float kSlabScale = 1.0f + kSlabSlack;  // the lanes' rule (scene_kernels.cpp)
 constexpr float kTinyPad = 1e-30f;
 constexpr std::size_t kFetchBytes = std::size_t(8) << 20;  // RayPrefetch::automatic (gyro/scene.hpp)
 constexpr uint32_t kNoIndex = 0xFFFFFFFFu;
@@ -839,7 +840,7 @@ class RayWalk {
       tn = t0 > tn ? t0 : tn;  // a NaN slab (0 * inf) leaves tn as it was
       tf = t1 < tf ? t1 : tf;
     }
-    return tn <= tf + std::abs(tf) * kSlabSlack && tn < kInf ? tn : kInf;
+    return tn <= tf * kSlabScale && tn < kInf ? tn : kInf;
   }
 
   void take(float t, uint32_t index, const SceneHit& h) {

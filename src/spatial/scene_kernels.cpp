@@ -51,6 +51,12 @@ using detail::SceneLeaf;
 
 constexpr float kInf = __builtin_inff();
 constexpr float kSlabSlack = 0x1p-18f;
+// A box counts as entered where tn <= tf * kSlabScale: the same verdict as tn <= tf +
+// |tf| * kSlabSlack in one multiply instead of three operations. For tf >= 0 both round the
+// same exact value tf * (1 + slack) once (tf * slack, a power of two, is exact above the
+// subnormals, and 1 + slack is a float); for tf < 0 both sides are negative and tn >= tmin
+// >= 0, so neither enters.
+constexpr float kSlabScale = 1.0f + kSlabSlack;
 constexpr float kBestSlack = 0x1p-16f;
 constexpr uint32_t kNone = 0xFFFFFFFFu;
 constexpr std::size_t kStackSize = 7 * detail::kBvhMaxDepth + 8 + order::kOverhang;
@@ -182,9 +188,9 @@ template <bool AnyHit> inline bool visit_leaf(const SceneRaycastArgs& a, Walk& w
   return false;
 }
 
-// Tests a node's child boxes: each one's entry in tn, bit k set where slot k is entered
+// Tests a node's child boxes: each one's entry in tn, lane k true where slot k is entered
 // within the limit.
-inline unsigned entered(const Walk& w, const BvhNode8& node, Oct& tn) {
+inline auto entered(const Walk& w, const BvhNode8& node, Oct& tn) {
   tn = w.tmin8;
   Oct tf = Oct(w.limit);
   for (int k = 0; k < 3; ++k) {  // x, y, z, each slab value first, as RayWalk::enter (scene.cpp)
@@ -194,14 +200,14 @@ inline unsigned entered(const Walk& w, const BvhNode8& node, Oct& tn) {
     tf = min(t1, tf);
   }
   // An empty slot's (+inf, -inf) box gives tn = +inf for any valid ray, so it never passes.
-  return lane_bits((tn <= tf + abs(tf) * Oct(kSlabSlack)) && (tn < Oct(kInf)));
+  return (tn <= tf * Oct(kSlabScale)) && (tn < Oct(kInf));
 }
 
 // The sorted walk's visit (walk_alone): pushes the entered children but the nearest onto the
 // stack at sp and makes that one `next`; true when it lies within the limit.
 inline bool enter_node(Walk& w, const BvhNode8& node, Entry& next, int& sp) {
   Oct tn;
-  const unsigned mask = entered(w, node, tn);
+  const unsigned mask = lane_bits(entered(w, node, tn));
   if (mask == 0) return false;
   float nears[8];
   store(nears, tn);
@@ -244,8 +250,7 @@ template <bool AnyHit, bool Fetch> inline bool step(const SceneRaycastArgs& a, W
     if (code & kLeafBit) return !visit_leaf<AnyHit>(a, w, a.leaves[code & ~kLeafBit]);
     const BvhNode8& node = a.nodes[code];
     Oct tn;
-    const unsigned mask = entered(w, node, tn);
-    sp = order::push(node, w.oct, tn, mask, w.stack_code, w.stack_near, sp);
+    sp = order::push(node, w.oct, tn, entered(w, node, tn), w.stack_code, w.stack_near, sp);
     return true;
   };
   if constexpr (Fetch) {
@@ -405,7 +410,7 @@ inline void walk_packet(const SceneRaycastArgs& a, Walk* W, unsigned rays, Packe
       tn = max(t0, tn);  // t0 > tn ? t0 : tn (lanes.hpp), one instruction on x86
       tf = min(t1, tf);
     }
-    return lane_bits((tn <= tf + abs(tf) * Oct(kSlabSlack)) && (tn < Oct(kInf)));
+    return lane_bits((tn <= tf * Oct(kSlabScale)) && (tn < Oct(kInf)));
   };
   const auto visit = [&](uint32_t code, unsigned mask) {
     const SceneLeaf& leaf = a.leaves[code & ~kLeafBit];
