@@ -1,6 +1,7 @@
 // Compaction of eight 32-bit lanes by a mask, for the AVX2 and AVX-512 kernels: the lanes
 // whose mask bit is set moved to the front, in order, with one permute. Shared by the GJK
-// lanes' pack (gjk_kernels.cpp) and the BVH walks' ordered push (spatial/bvh_order.hpp).
+// lanes' pack (gjk_kernels.cpp) and, at the AVX2 level, the BVH walks' ordered push (spatial/bvh_order.hpp;
+// AVX-512 compacts there with vpcompressd).
 #pragma once
 
 #include "core/arch.hpp"

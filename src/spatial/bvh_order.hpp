@@ -7,7 +7,7 @@
 // enters (one, two, several: each a coin toss on incoherent rays) plus an insertion sort,
 // together over half of a scene walk's mispredicted branches (R1: 10 of 19.5 per ray). The
 // push here has no branch: the entered slots in that order are compacted in one register
-// (core/lane_compact.hpp) and stored whole, codes and entry distances in two
+// (core/lane_compact.hpp; vpcompressd on AVX-512) and stored whole, codes and entry distances in two
 // columns, and the depth grows by their count.
 //
 // A closest-hit answer does not depend on the visiting order (the kernels' exactness notes:
