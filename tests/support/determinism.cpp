@@ -909,9 +909,9 @@ const DetScene kScenes[] = {
     {"n1_overlap", scene_n1_overlap, 0xad908dedd18ef994ull},
     {"geometry_batch", scene_geometry_batch, 0x1d2f55ce85f87c4full},
 #if defined(GYRO_HAS_SPATIAL)
-    {"mesh_bvh", scene_mesh_bvh, 0x443954b2125dc999ull},
+    {"mesh_bvh", scene_mesh_bvh, 0xe19d13110fb21b02ull},
     {"camera_frustum", scene_camera_frustum, 0x246ff5bf8a6a766cull},
-    {"scene_models", scene_models, 0xfc20defafa7aa0fbull},
+    {"scene_models", scene_models, 0xdba9aabb65c16b46ull},
     {"rays_one_origin", scene_rays_one_origin, 0x4ee4f0393c05adbaull},
     {"mesh_slivers", scene_mesh_slivers, 0xa80aeab449555782ull},
 #endif
