@@ -1,12 +1,12 @@
 // The octant orders of the nodes a refit changed, brought up to date at each SIMD level.
 //
-// A refit changes the boxes of many nodes (R1M with every model moved: 3,700 a frame) and
-// few of their orders (13% there, 4% with a tenth moved). Checking an order costs less than
-// sorting it, and the check is mostly gathers and compares of eight binary64 keys, which the
-// AVX levels do in a few permutes (bvh_orders_kernels.cpp). A node the fast check cannot
-// clear (an order that no longer sorts, or tied keys) is sorted again: by ranks in mask
-// compares on AVX-512, by set_child_orders() elsewhere, each giving the build's bytes; so
-// every level writes the same orders, the sort's.
+// A refit changes the boxes of many nodes (R1M with every model moved: all 3,030 a frame) and
+// few of their orders (a fifth of the nodes there, each mostly in one or two of its four
+// octant pairs). Checking an order costs less than sorting it: the AVX levels check each pair
+// first in binary32 lanes with a margin, then in binary64 where that cannot decide, and sort
+// by ranks in SIMD compares only the pairs that fail (bvh_orders_kernels.cpp; R1M all moved,
+// AVX2: 2.3 -> 1.1 M instructions a frame against the portable insertion sorts), each giving
+// the build's bytes; so every level writes the same orders, the sort's.
 #pragma once
 
 #include "core/dispatch.hpp"

@@ -14,9 +14,11 @@
 #include "core/parallel.hpp"
 #include "spatial/bvh.hpp"
 #include "spatial/bvh_orders.hpp"
+#include "spatial/bvh_slots.hpp"
 
 #include <bit>
 #include <cstdint>
+#include <cstring>
 #include <vector>
 
 namespace gyro::detail {
@@ -56,10 +58,14 @@ class BvhRefit {
   /// sorted again only where they no longer sort; the bytes are the sort's either way.
   template <class BoxOf> bool refit(BoxBvh8& bvh, BoxOf&& box) {
     order_nodes_.clear();
+    bvh_slots_store_fn* const store = GYRO_DISPATCH(bvh_slots_store);
     for (std::size_t i = bvh.nodes.size(); i-- > 0;) {
       if (!node_mark_[i]) continue;
       BvhNode8& n = bvh.nodes[i];
-      bool changed = false;
+      // The slots gathered in a copy of the rows, then compared, stored and united in SIMD
+      // lanes (bvh_slots.hpp).
+      float rows[6][8];
+      std::memcpy(rows, n.bounds, sizeof rows);
       for (int k = 0; k < 8; ++k) {
         const uint32_t code = n.child[k];
         if (code == kEmptyChild) continue;
@@ -67,26 +73,28 @@ class BvhRefit {
         if (code & kLeafBit) {
           const uint32_t l = code & ~kLeafBit;
           if (!leaf_mark_[l]) continue;
-          float lo[3], hi[3];
-          for (uint32_t item : bvh.leaves[l].item)
-            if (item != kNoItem) box(item, lo, hi), slot.grow(lo, hi);
+          if constexpr (kBoxBvhLeafItems == 1) {
+            // One item: its finite box is its union with the empty one.
+            const uint32_t item = bvh.leaves[l].item[0];
+            if (item != kNoItem) box(item, slot.lo, slot.hi);
+          } else {
+            float lo[3], hi[3];
+            for (uint32_t item : bvh.leaves[l].item)
+              if (item != kNoItem) box(item, lo, hi), slot.grow(lo, hi);
+          }
           leaf_area_[l] = slot.half_area();
         } else {
           if (code <= i) return false;
           if (!node_mark_[code] || !node_changed_[code]) continue;
           slot = node_box_[code];
         }
-        for (int a = 0; a < 3; ++a) {
-          float& lo = n.bounds[2 * a][k];
-          float& hi = n.bounds[2 * a + 1][k];
-          changed = changed || !same_bits(lo, slot.lo[a]) || !same_bits(hi, slot.hi[a]);
-          lo = slot.lo[a], hi = slot.hi[a];
-        }
+        for (int a = 0; a < 3; ++a) rows[2 * a][k] = slot.lo[a], rows[2 * a + 1][k] = slot.hi[a];
       }
+      BoxUnion own;
+      const bool changed = store(n, rows, own.lo, own.hi);  // the bits compared, as the build's
       node_changed_[i] = changed;
       if (!changed) continue;
       order_nodes_.push_back(uint32_t(i));
-      const BoxUnion own = slots_of(n);
       node_box_[i] = own;
       node_area_[i] = own.half_area();
       if (i == 0) bvh.bounds = aabb_from_min_max({own.lo[0], own.lo[1], own.lo[2]}, {own.hi[0], own.hi[1], own.hi[2]});

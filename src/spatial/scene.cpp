@@ -147,20 +147,54 @@ struct Corners {
   }
 };
 
-Placed place(const ModelDef& d, const ModelTransform& w, uint32_t index) {
-  Placed p;
+// Whether every value is finite: one test of the bits of each, no branch between them.
+template <std::size_t N> bool all_finite(const float (&v)[N]) {
+  uint32_t bad = 0;
+  for (float x : v) bad |= uint32_t((std::bit_cast<uint32_t>(x) & 0x7f800000u) == 0x7f800000u);
+  return bad == 0;
+}
+
+// Writes p as the placement of a model with def d at world transform w. A sphere (most of a
+// moving scene's models, often) writes only its own fields, in place: the others hold what
+// Placed{} gave them, since a slot keeps its shape until compute_world() starts every slot
+// afresh (a remove, which may move another model into the slot, places everything). Building
+// a whole Placed and copying it was most of an all-moved frame's placing (R1M: 201
+// instructions a sphere).
+void place(Placed& p, const ModelDef& d, const ModelTransform& w, uint32_t index) {
+  if (d.shape == ModelShape::sphere) {
+    if (p.shape != ModelShape::sphere) p = Placed{};
+    p.index = index;
+    p.world = w;
+    p.mesh = d.mesh.get();
+    const float r = d.radius * w.scale;
+    p.set_sphere({w.position, r});
+    // padded_bounds(position, {r, r, r}) written out: its max_abs3 of three equal values is
+    // |r|, and max_abs3 is std::max's rule (the first of the largest), here without a list.
+    const vec3& c = w.position;
+    float m = std::abs(c.x);
+    if (m < std::abs(c.y)) m = std::abs(c.y);
+    if (m < std::abs(c.z)) m = std::abs(c.z);
+    const float pad = kBoxPad * (m + std::abs(r)) + kTinyPad;
+    p.bounds = aabb_from_min_max(c - vec3{r, r, r} - vec3{pad, pad, pad}, c + vec3{r, r, r} + vec3{pad, pad, pad});
+    // The other shapes' test, of fewer values: finite corners imply a finite centre and
+    // half extent of the bounds (else one corner is inf or NaN), so a finite position, r and
+    // pad, and with the radius finite (check_shape) a finite scale.
+    const vec3 lo = aabb_min(p.bounds), hi = aabb_max(p.bounds);
+    const quat& q = w.rotation;
+    const float check[] = {lo.x, lo.y, lo.z, hi.x, hi.y, hi.z, q.x, q.y, q.z, q.w};
+    p.placed = all_finite(check);
+    return;
+  }
+  p = Placed{};
   p.shape = d.shape;
   p.index = index;
   p.world = w;
-  // Only the shapes that turn need the matrix: a sphere (most of a moving scene's models,
-  // often) skips it.
+  // Only the shapes that turn need the matrix.
   const auto rot = [&w] { return to_mat3(w.rotation); };
   p.mesh = d.mesh.get();
   vec3 centre = w.position, half{0.0f, 0.0f, 0.0f};
   switch (d.shape) {
     case ModelShape::sphere:
-      p.set_sphere({w.position, d.radius * w.scale});
-      half = vec3{p.box.half_extents.x, p.box.half_extents.x, p.box.half_extents.x};
       break;
     case ModelShape::box:
       p.box = {w.position, d.half_extents * w.scale, rot()};
@@ -179,7 +213,7 @@ Placed place(const ModelDef& d, const ModelTransform& w, uint32_t index) {
       p.set_plane(plane);
       p.bounds = {{0.0f, 0.0f, 0.0f}, {kInf, kInf, kInf}};
       p.placed = gyro::is_finite(plane.normal) && detail::is_finite(plane.distance) && gyro::is_finite(w.position);
-      return p;
+      return;
     }
   }
   p.bounds = padded_bounds(centre, half);
@@ -188,7 +222,6 @@ Placed place(const ModelDef& d, const ModelTransform& w, uint32_t index) {
             gyro::is_finite(aabb_max(p.bounds)) && gyro::is_finite(p.bounds.half_extents);
   for (float v : q) ok = ok && detail::is_finite(v);
   p.placed = ok;
-  return p;
 }
 
 // An AABB query region [lo, hi] widened like the models' boxes.
@@ -265,9 +298,13 @@ struct Scene::Impl {
   double built_sah = 0.0;   // the last full BVH build's sah_cost, which a refit may not exceed by kSceneRefitCost
   std::size_t builds = 0, refits = 0;
   // A frame pays for what moved. compute_world() places again only the models moved since it
-  // last ran, with their descendants, unless world_all: after an add, a remove or a
-  // reparenting, or once the moves reach a quarter of the models, it places every model.
+  // last ran, with their descendants, unless world_all (after an add, a remove or a
+  // reparenting: it links the models again and places every one) or moves_all (the moves
+  // reached a quarter of the models: it places every one in place_order, parents first,
+  // over the same slots, which allocates nothing).
   bool world_all = true;
+  bool moves_all = false;
+  std::vector<uint32_t> place_order;  // every slot, each after its parent (set with world_all)
   std::vector<uint32_t> moved;        // slots, each once
   std::vector<uint8_t> moved_mark;    // by slot
   std::vector<uint32_t> child_begin;  // children by slot (child_slots[child_begin[s] ..]); empty: no model has a parent
@@ -292,9 +329,11 @@ struct Scene::Impl {
 
   // A move of slot s: noted for the next compute_world(), unless that places every model.
   void note_move(uint32_t s) {
-    if (world_all || moved_mark[s]) return;
+    if (world_all || moves_all || moved_mark[s]) return;
     if (4 * (moved.size() + 1) > pool.size()) {
-      world_all = true;
+      moves_all = true;
+      for (uint32_t m : moved) moved_mark[m] = 0;
+      moved.clear();
       return;
     }
     moved_mark[s] = 1;
@@ -303,20 +342,41 @@ struct Scene::Impl {
 
   void compute_world() {
     const uint32_t n = pool.size();
-    if (!world_all && placed.size() == n) {
+    if (!world_all && placed.size() == n && place_order.size() == n) {
+      if (moves_all) {
+        // Every model again, the tree's items kept unless one became placed or unplaced.
+        moves_all = false;
+        for (uint32_t s : replaced) replaced_mark[s] = 0;
+        replaced.clear();
+        tree_all = true;
+        bool flips = false;
+        for (uint32_t c : place_order) {
+          const ModelDef& d = defs[c];
+          const bool was = placed[c].placed;
+          if (d.parent.is_null()) place(placed[c], d, d.transform, pool.id_at(c).index);
+          else place(placed[c], d, compose(d.transform, placed[slot(d.parent)].world), pool.id_at(c).index);
+          flips |= placed[c].placed != was;
+        }
+        items_changed = items_changed || flips;
+        return;
+      }
       for (uint32_t s : moved) place_from(s);
       for (uint32_t s : moved) moved_mark[s] = 0;
       moved.clear();
       return;
     }
     world_all = false;
+    moves_all = false;
     moved.clear();
     moved_mark.assign(n, 0);
     replaced.clear();
     replaced_mark.assign(n, 0);
     tree_all = true;
+    items_changed = true;
     link_children();
     placed.assign(n, Placed{});
+    place_order.clear();
+    place_order.reserve(n);
     std::vector<uint8_t> done(n, 0);
     std::vector<uint32_t> chain;
     for (uint32_t s = 0; s < n; ++s) {
@@ -332,7 +392,8 @@ struct Scene::Impl {
         chain.pop_back();
         const ModelDef& d = defs[c];
         const ModelTransform w = d.parent.is_null() ? d.transform : compose(d.transform, placed[slot(d.parent)].world);
-        placed[c] = place(d, w, pool.id_at(c).index);
+        place(placed[c], d, w, pool.id_at(c).index);
+        place_order.push_back(c);
         done[c] = 1;
       }
     }
@@ -351,7 +412,7 @@ struct Scene::Impl {
       const ModelDef& d = defs[c];
       const ModelTransform w = d.parent.is_null() ? d.transform : compose(d.transform, placed[slot(d.parent)].world);
       const bool was = placed[c].placed;
-      placed[c] = place(d, w, pool.id_at(c).index);
+      place(placed[c], d, w, pool.id_at(c).index);
       items_changed = items_changed || placed[c].placed != was;
       if (!tree_all && !replaced_mark[c]) replaced_mark[c] = 1, replaced.push_back(c);
       if (!child_begin.empty()) stack.insert(stack.end(), child_slots.begin() + child_begin[c], child_slots.begin() + child_begin[c + 1]);
@@ -388,7 +449,7 @@ struct Scene::Impl {
 
   void build_tree() {
     // Moves that placed or unplaced no model keep the items (and the plane list) as they are.
-    bool same_items = !rebuild && !tree_all && !items_changed;
+    bool same_items = !rebuild && !items_changed;
     if (!same_items) {
       std::vector<uint32_t> tree, planes;
       for (uint32_t s = 0; s < pool.size(); ++s) {
@@ -473,7 +534,15 @@ struct Scene::Impl {
       for (int a = 0; a < 3; ++a) lo[a] = c.lo[a], hi[a] = c.hi[a];
     });
     const bool keep = ok && bvh.stats.sah_cost <= kSceneRefitCost * built_sah;
-    if (keep) links.each_marked_leaf([&](uint32_t l) { write_ray_leaf(l); });
+    // A refit keeps the items, so a sphere's leaf keeps all but its centre and radius.
+    if (keep)
+      links.each_marked_leaf([&](uint32_t l) {
+        const uint32_t item = bvh.leaves[l].item[0];
+        const Placed* p = item == detail::kNoItem ? nullptr : &placed[tree_slots[item]];
+        if (!p || p->shape != ModelShape::sphere) return write_ray_leaf(l);
+        float* sphere = ray_leaves[l].sphere;
+        sphere[0] = p->box.center.x, sphere[1] = p->box.center.y, sphere[2] = p->box.center.z, sphere[3] = p->box.half_extents.x;
+      });
     links.clear_marks();
     return keep;
   }
