@@ -33,22 +33,13 @@ class BvhRefit {
   void mark_item(uint32_t item);
   /// Marks every node and leaf block (a refit of the whole tree).
   void mark_all();
-  /// Calls f(leaf) for each marked leaf block.
-  template <class F> void each_marked_leaf(F&& f) const {
-    if (all_marked_) {
-      for (std::size_t l = 0; l < leaf_mark_.size(); ++l) f(uint32_t(l));
-    } else {
-      for (uint32_t l : marked_leaves_) f(l);
-    }
-  }
-
   /// Recomputes the marked nodes' slot boxes, children before parents (the build numbers
   /// nodes depth first, so a child's index is above its parent's), each marked leaf slot
-  /// from box(item, lo, hi) and each marked node slot from that child's new box, then the
-  /// octant orders of the nodes whose slots changed, the tree's bounds and its expected ray
-  /// cost (the build's formula). False when the numbering is not the build's: the caller
-  /// then rebuilds, which overwrites whatever this wrote. The marks stay for
-  /// each_marked_leaf() until clear_marks().
+  /// from box(leaf, item, lo, hi) (called once for each item of each marked leaf block) and
+  /// each marked node slot from that child's new box, then the octant orders of the nodes
+  /// whose slots changed, the tree's bounds and its expected ray cost (the build's formula).
+  /// False when the numbering is not the build's: the caller then rebuilds, which overwrites
+  /// whatever this wrote. The marks stay until clear_marks().
   ///
   /// A slot whose child is not marked already holds that child's box, and a node none of
   /// whose slots changed keeps its box, area and orders (a function of the slots alone): the
@@ -76,11 +67,11 @@ class BvhRefit {
           if constexpr (kBoxBvhLeafItems == 1) {
             // One item: its finite box is its union with the empty one.
             const uint32_t item = bvh.leaves[l].item[0];
-            if (item != kNoItem) box(item, slot.lo, slot.hi);
+            if (item != kNoItem) box(l, item, slot.lo, slot.hi);
           } else {
             float lo[3], hi[3];
             for (uint32_t item : bvh.leaves[l].item)
-              if (item != kNoItem) box(item, lo, hi), slot.grow(lo, hi);
+              if (item != kNoItem) box(l, item, lo, hi), slot.grow(lo, hi);
           }
           leaf_area_[l] = slot.half_area();
         } else {

@@ -319,6 +319,7 @@ struct Scene::Impl {
   // The BVH's tree item of each slot (kNoIndex: none) and its links for a partial refit.
   std::vector<uint32_t> slot_item;
   detail::BvhRefit links;
+  std::vector<uint32_t> other_leaves;  // refit_bvh()'s leaves of models other than spheres
 
   void changed() {
     world_ready.store(false, std::memory_order_relaxed);
@@ -528,21 +529,21 @@ struct Scene::Impl {
       for (uint32_t s : replaced)
         if (slot_item[s] != kNoIndex) links.mark_item(slot_item[s]);
     }
-    const bool ok = links.refit(bvh, [&](uint32_t item, float lo[3], float hi[3]) {
+    // A refit keeps the items, so a sphere's ray leaf keeps all but its centre and radius,
+    // written as its box is read; the other leaves are written again after the refit. A
+    // refit that is not kept ends in a rebuild, which writes every ray leaf afresh.
+    other_leaves.clear();
+    const bool ok = links.refit(bvh, [&](uint32_t leaf, uint32_t item, float lo[3], float hi[3]) {
       const Placed& p = placed[tree_slots[item]];
       const Corners c(p);
       for (int a = 0; a < 3; ++a) lo[a] = c.lo[a], hi[a] = c.hi[a];
+      if (p.shape != ModelShape::sphere) return other_leaves.push_back(leaf);
+      float* sphere = ray_leaves[leaf].sphere;
+      sphere[0] = p.box.center.x, sphere[1] = p.box.center.y, sphere[2] = p.box.center.z, sphere[3] = p.box.half_extents.x;
     });
     const bool keep = ok && bvh.stats.sah_cost <= kSceneRefitCost * built_sah;
-    // A refit keeps the items, so a sphere's leaf keeps all but its centre and radius.
     if (keep)
-      links.each_marked_leaf([&](uint32_t l) {
-        const uint32_t item = bvh.leaves[l].item[0];
-        const Placed* p = item == detail::kNoItem ? nullptr : &placed[tree_slots[item]];
-        if (!p || p->shape != ModelShape::sphere) return write_ray_leaf(l);
-        float* sphere = ray_leaves[l].sphere;
-        sphere[0] = p->box.center.x, sphere[1] = p->box.center.y, sphere[2] = p->box.center.z, sphere[3] = p->box.half_extents.x;
-      });
+      for (uint32_t l : other_leaves) write_ray_leaf(l);
     links.clear_marks();
     return keep;
   }

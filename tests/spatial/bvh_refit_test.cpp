@@ -285,7 +285,7 @@ TEST(BvhRefit, MarkedNodesEqualEveryNodeRecomputed) {
     ref.nodes.assign(bvh.nodes.begin(), bvh.nodes.end());
     ref.leaves.assign(bvh.leaves.begin(), bvh.leaves.end());
     recompute_all(ref, items);
-    ASSERT_TRUE(links.refit(bvh, [&](uint32_t item, float lo[3], float hi[3]) {
+    ASSERT_TRUE(links.refit(bvh, [&](uint32_t, uint32_t item, float lo[3], float hi[3]) {
       for (int a = 0; a < 3; ++a) lo[a] = items[item].lo[a], hi[a] = items[item].hi[a];
     }));
     links.clear_marks();
