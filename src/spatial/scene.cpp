@@ -55,6 +55,9 @@ constexpr float kSlabScale = 1.0f + kSlabSlack;  // the lanes' rule (scene_kerne
 constexpr float kTinyPad = 1e-30f;
 constexpr std::size_t kFetchBytes = std::size_t(8) << 20;  // RayPrefetch::automatic (gyro/scene.hpp)
 constexpr uint32_t kNoIndex = 0xFFFFFFFFu;
+// Slots per parallel chunk when every model is placed again (about 160 instructions a
+// sphere: 10^4 spheres make five chunks).
+constexpr std::size_t kPlaceChunk = 2048;
 // Entries on a traversal stack: a node pushes at most 7 siblings per level.
 constexpr std::size_t kStackSize = 8 * (detail::kBvhMaxDepth + 2);
 
@@ -305,6 +308,7 @@ struct Scene::Impl {
   bool world_all = true;
   bool moves_all = false;
   std::vector<uint32_t> place_order;  // every slot, each after its parent (set with world_all)
+  std::vector<uint8_t> chunk_flips;   // moves_all's, per chunk of kPlaceChunk slots: a model became (un)placed
   std::vector<uint32_t> moved;        // slots, each once
   std::vector<uint8_t> moved_mark;    // by slot
   std::vector<uint32_t> child_begin;  // children by slot (child_slots[child_begin[s] ..]); empty: no model has a parent
@@ -351,12 +355,29 @@ struct Scene::Impl {
         replaced.clear();
         tree_all = true;
         bool flips = false;
-        for (uint32_t c : place_order) {
-          const ModelDef& d = defs[c];
-          const bool was = placed[c].placed;
-          if (d.parent.is_null()) place(placed[c], d, d.transform, pool.id_at(c).index);
-          else place(placed[c], d, compose(d.transform, placed[slot(d.parent)].world), pool.id_at(c).index);
-          flips |= placed[c].placed != was;
+        if (child_begin.empty()) {
+          // No model has a parent: each placement stands alone, so fixed chunks of slots on
+          // any threads give the same bytes, and each chunk notes its own flips.
+          const std::size_t chunks = (n + kPlaceChunk - 1) / kPlaceChunk;
+          chunk_flips.assign(chunks, 0);
+          detail::parallel_for(n, kPlaceChunk, [&](std::size_t b, std::size_t e) {
+            uint8_t f = 0;
+            for (std::size_t c = b; c < e; ++c) {
+              const bool was = placed[c].placed;
+              place(placed[c], defs[c], defs[c].transform, pool.id_at(uint32_t(c)).index);
+              f |= uint8_t(placed[c].placed != was);
+            }
+            chunk_flips[b / kPlaceChunk] = f;
+          });
+          for (uint8_t f : chunk_flips) flips = flips || f != 0;
+        } else {
+          for (uint32_t c : place_order) {
+            const ModelDef& d = defs[c];
+            const bool was = placed[c].placed;
+            if (d.parent.is_null()) place(placed[c], d, d.transform, pool.id_at(c).index);
+            else place(placed[c], d, compose(d.transform, placed[slot(d.parent)].world), pool.id_at(c).index);
+            flips |= placed[c].placed != was;
+          }
         }
         items_changed = items_changed || flips;
         return;

@@ -985,6 +985,103 @@ TEST(Scene, PartialUpdatesEqualFullOnes) {
   expect_raycasts(part.scene, rays, expect);
 }
 
+// Frames that move every model of a scene without parents place them in fixed chunks of
+// slots on the worker threads, then refit every node. At 1, 2 and 3 threads (and every SIMD
+// level the machine has) the frames must give the same bits: placements, the tree's cost and
+// counts, closest and any hits; and the same closest hits and placements as a scene that
+// rebuilds its tree every frame. Enough models for several chunks; one of them is pushed past
+// the float range (unplaced: the tree's items change, a rebuild) and back.
+TEST(Scene, EveryModelMovedGivesTheSameBitsAtAnyThreadCount) {
+  constexpr std::size_t kModels = 4500;
+  constexpr int kFrames = 6;
+  const std::vector<std::shared_ptr<const TriangleMesh>> meshes = test_meshes();
+  struct Run {
+    std::vector<ModelInfo> info;      // every model after every frame
+    std::vector<float> closest_t, any_t;
+    std::vector<ModelId> closest, any;
+    std::vector<uint64_t> stats;      // builds, refits, sah_cost bits, tree models per frame
+  };
+  const auto run = [&](SimdLevel level, uint32_t threads, bool refit) {
+    ScopedExecution exec(level, threads);
+    SceneSettings settings;
+    settings.refit = refit;
+    Scene scene(settings);
+    SplitMix64 rng(301);
+    std::vector<ModelId> ids(kModels);
+    std::vector<ModelTransform> local(kModels);
+    const std::vector<ModelId> no_parents;
+    for (std::size_t i = 0; i < kModels; ++i) {
+      const ModelDef d = random_def(rng, meshes, no_parents, 80.0f);
+      EXPECT_EQ(scene.add_model(d, &ids[i]), Status::ok);
+      local[i] = d.transform;
+    }
+    scene.prepare();
+    const Rays rays = make_rays(snapshot(scene), 300, 302);
+    Run r;
+    for (int frame = 0; frame < kFrames; ++frame) {
+      for (std::size_t i = 0; i < kModels; ++i) {
+        local[i].position = local[i].position + vec3{uni(rng, -0.3, 0.3), uni(rng, -0.3, 0.3), uni(rng, -0.3, 0.3)};
+        if (i % 7 == 0) local[i].rotation = random_rotation(rng);
+        ModelTransform t = local[i];
+        if (i == 11 && frame == 2) t.position.x = std::numeric_limits<float>::max();
+        EXPECT_EQ(scene.set_transform(ids[i], t), Status::ok);
+      }
+      const SceneStats st = scene.stats();
+      r.stats.insert(r.stats.end(), {uint64_t(st.builds), uint64_t(st.refits), std::bit_cast<uint64_t>(st.sah_cost),
+                                     uint64_t(st.tree_models)});
+      for (std::size_t i = 0; i < kModels; ++i) {
+        ModelInfo info;
+        EXPECT_EQ(scene.model(ids[i], &info), Status::ok);
+        r.info.push_back(info);
+      }
+      Columns c(rays.set.size()), a(rays.set.size());
+      EXPECT_EQ(raycast_closest(scene, rays.view(), rays.set.size(), c.out()), Status::ok);
+      EXPECT_EQ(raycast_any(scene, rays.view(), rays.set.size(), a.out()), Status::ok);
+      r.closest_t.insert(r.closest_t.end(), c.t.begin(), c.t.end());
+      r.closest.insert(r.closest.end(), c.model.begin(), c.model.end());
+      r.any_t.insert(r.any_t.end(), a.t.begin(), a.t.end());
+      r.any.insert(r.any.end(), a.model.begin(), a.model.end());
+    }
+    return r;
+  };
+  const auto same_info = [](const ModelInfo& x, const ModelInfo& y) {
+    const float p[14] = {x.world.position.x, x.world.position.y, x.world.position.z, x.world.rotation.x, x.world.rotation.y,
+                         x.world.rotation.z, x.world.rotation.w, x.world.scale,      x.bounds.center.x,  x.bounds.center.y,
+                         x.bounds.center.z,  x.bounds.half_extents.x, x.bounds.half_extents.y, x.bounds.half_extents.z};
+    const float q[14] = {y.world.position.x, y.world.position.y, y.world.position.z, y.world.rotation.x, y.world.rotation.y,
+                         y.world.rotation.z, y.world.rotation.w, y.world.scale,      y.bounds.center.x,  y.bounds.center.y,
+                         y.bounds.center.z,  y.bounds.half_extents.x, y.bounds.half_extents.y, y.bounds.half_extents.z};
+    return x.placed == y.placed && std::equal(p, p + 14, q, [](float a, float b) { return bits(a) == bits(b); });
+  };
+  const Run base = run(SimdLevel::automatic, 1, true);
+  // Frame 2's unplaced model rebuilds the tree, frame 3's return too; the others refit.
+  ASSERT_EQ(base.stats.size(), std::size_t(4 * kFrames));
+  EXPECT_EQ(base.stats[4 * (kFrames - 1)], 3u);      // builds: the first, frames 2 and 3
+  EXPECT_EQ(base.stats[4 * (kFrames - 1) + 1], 4u);  // refits: frames 0, 1, 4 and 5
+  EXPECT_EQ(base.stats[4 * 2 + 3], kModels - 1);
+  const Run fresh = run(SimdLevel::automatic, 1, false);
+  for (std::size_t k = 0; k < base.info.size(); ++k) ASSERT_TRUE(same_info(base.info[k], fresh.info[k])) << "model " << k;
+  for (std::size_t r = 0; r < base.closest.size(); ++r) {
+    ASSERT_EQ(base.closest[r], fresh.closest[r]) << "ray " << r;
+    ASSERT_EQ(bits(base.closest_t[r]), bits(fresh.closest_t[r])) << "ray " << r;
+  }
+  for (SimdLevel level : {SimdLevel::scalar, SimdLevel::sse2, SimdLevel::avx2, SimdLevel::avx512, SimdLevel::neon}) {
+    if (!simd_level_available(level)) continue;
+    for (uint32_t threads : {1u, 2u, 3u}) {
+      const Run other = run(level, threads, true);
+      ASSERT_EQ(other.stats, base.stats) << simd_level_name(level) << " threads " << threads;
+      for (std::size_t k = 0; k < base.info.size(); ++k)
+        ASSERT_TRUE(same_info(base.info[k], other.info[k])) << simd_level_name(level) << " threads " << threads << " model " << k;
+      for (std::size_t r = 0; r < base.closest.size(); ++r) {
+        ASSERT_EQ(base.closest[r], other.closest[r]) << "ray " << r;
+        ASSERT_EQ(bits(base.closest_t[r]), bits(other.closest_t[r])) << "ray " << r;
+        ASSERT_EQ(base.any[r], other.any[r]) << "ray " << r;
+        ASSERT_EQ(bits(base.any_t[r]), bits(other.any_t[r])) << "ray " << r;
+      }
+    }
+  }
+}
+
 TEST(Scene, PickHitsTheModelUnderTheCursor) {
   Scene scene;
   ModelDef d;
