@@ -97,7 +97,9 @@ inline unsigned unclear_octants(const BvhNode8& n, const Slots& s) {
   m = _mm_max_ps(m, _mm_movehl_ps(m, m));
   m = _mm_max_ss(m, _mm_shuffle_ps(m, m, 1));
   const float margin = 0x1p-20f * _mm_cvtss_f32(m);
-  if (!(margin < 0x1p100f)) return 15u;  // an overflow or a NaN in a used slot
+  // Not for an overflow or a NaN in a used slot, nor for centres so near 0 that flushed
+  // subnormals (the float environment's FTZ and DAZ) could matter beside the margin.
+  if (!(margin >= 0x1p-100f && margin < 0x1p100f)) return 15u;
   const __m256 gap = _mm256_set1_ps(margin);
   const __m256 key[4] = {_mm256_add_ps(_mm256_add_ps(c[0], c[1]), c[2]), _mm256_add_ps(_mm256_sub_ps(c[1], c[0]), c[2]),
                          _mm256_add_ps(_mm256_sub_ps(c[0], c[1]), c[2]),
