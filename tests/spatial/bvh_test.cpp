@@ -213,7 +213,9 @@ template <class Tree> double mean_fill(const Tree& t, std::size_t& mergeable) {
 // near the leaves. The trees of SameBytesAtEveryThreadCount below: the mesh's mean fill
 // 4.78 -> 6.36 slots (4,692 -> 3,309 nodes), SAH cost 31.21 -> 29.27; the 50k boxes' (one
 // to a leaf) 3.62 -> 4.13 (19,098 -> 15,956 nodes), 31.86 -> 31.64. R2's 522k triangles:
-// 4.48 -> 6.13 (38,513 -> 26,142 nodes), 15.32 -> 14.82.
+// 4.48 -> 6.13 (38,513 -> 26,142 nodes), 15.32 -> 14.82. Fewer bins for small nodes
+// (bins_for) then moved the SAH costs: the mesh 29.27 -> 29.50, the boxes 31.644 -> 31.643,
+// R2 14.820 -> 14.813.
 TEST(Bvh, CollapseFillsTheNodes) {
   const MeshData mesh = random_mesh(70000, 5, false);
   const std::vector<detail::BvhBox> boxes = random_boxes();
@@ -224,7 +226,7 @@ TEST(Bvh, CollapseFillsTheNodes) {
   EXPECT_GT(mean_fill(c, mergeable_c), 4.0);
   EXPECT_EQ(mergeable_a, 0u);
   EXPECT_EQ(mergeable_c, 0u);
-  EXPECT_LT(a.stats.sah_cost, 29.5);
+  EXPECT_LT(a.stats.sah_cost, 29.6);
   EXPECT_LT(c.stats.sah_cost, 31.7);
 }
 
@@ -243,9 +245,9 @@ TEST(Bvh, SameBytesAtEveryThreadCount) {
     set_thread_count(threads);
     const detail::Bvh8 a = detail::build_bvh8(mesh), b = detail::build_bvh8(clustered);
     const detail::BoxBvh8 c = detail::build_box_bvh8(boxes.data(), boxes.size());
-    EXPECT_EQ(tree_hash(a), 12649124892597669531ull) << threads << " threads";
-    EXPECT_EQ(tree_hash(b), 8644269645879922211ull) << threads << " threads";
-    EXPECT_EQ(tree_hash(c), 8524001636921789499ull) << threads << " threads";
+    EXPECT_EQ(tree_hash(a), 9813848147624824449ull) << threads << " threads";
+    EXPECT_EQ(tree_hash(b), 15166388934927890453ull) << threads << " threads";
+    EXPECT_EQ(tree_hash(c), 15192136064466148556ull) << threads << " threads";
     const uint64_t h[3] = {bytes_hash(a), bytes_hash(b), bytes_hash(c)};
     for (int k = 0; k < 3; ++k) {
       if (threads == 1u) whole[k] = h[k];
@@ -257,9 +259,9 @@ TEST(Bvh, SameBytesAtEveryThreadCount) {
   }
   // Every byte is written (the nodes and leaf blocks are not zeroed before the fill): the
   // whole bytes are pinned too.
-  EXPECT_EQ(whole[0], 14098118893859610235ull);
-  EXPECT_EQ(whole[1], 17793074903450506975ull);
-  EXPECT_EQ(whole[2], 3125500110909961547ull);
+  EXPECT_EQ(whole[0], 18196415548053710919ull);
+  EXPECT_EQ(whole[1], 3277331604974551807ull);
+  EXPECT_EQ(whole[2], 1123117721935374864ull);
   set_thread_count(saved);
 }
 

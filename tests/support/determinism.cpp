@@ -909,7 +909,7 @@ const DetScene kScenes[] = {
     {"n1_overlap", scene_n1_overlap, 0xad908dedd18ef994ull},
     {"geometry_batch", scene_geometry_batch, 0x1d2f55ce85f87c4full},
 #if defined(GYRO_HAS_SPATIAL)
-    {"mesh_bvh", scene_mesh_bvh, 0xe19d13110fb21b02ull},
+    {"mesh_bvh", scene_mesh_bvh, 0xde9c8060e85afecaull},
     {"camera_frustum", scene_camera_frustum, 0x246ff5bf8a6a766cull},
     {"scene_models", scene_models, 0xdba9aabb65c16b46ull},
     {"rays_one_origin", scene_rays_one_origin, 0x4ee4f0393c05adbaull},
