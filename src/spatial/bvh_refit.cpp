@@ -52,6 +52,51 @@ void BvhRefit::link(const BoxBvh8& bvh, std::size_t items) {
       }
     }
   }
+  plan_tasks(bvh);
+}
+
+void BvhRefit::plan_tasks(const BoxBvh8& bvh) {
+  const std::size_t nodes = bvh.nodes.size();
+  task_root_.clear();
+  task_end_.clear();
+  top_.clear();
+  // Each subtree's size and the end of its index range, children first (their indices are
+  // above their parent's); the tasks need every subtree to fill its range (the build's
+  // depth-first numbering), else every node is left to the top, in the order of one pass.
+  std::vector<uint32_t> size(nodes, 1), end(nodes);
+  bool contiguous = true;
+  for (std::size_t i = nodes; i-- > 0 && contiguous;) {
+    end[i] = uint32_t(i + 1);
+    for (const uint32_t code : bvh.nodes[i].child) {
+      if (code == kEmptyChild || (code & kLeafBit)) continue;
+      if (code <= i || code >= nodes) {
+        contiguous = false;
+        break;
+      }
+      size[i] += size[code], end[i] = std::max(end[i], end[code]);
+    }
+    contiguous = contiguous && end[i] - i == size[i];
+  }
+  if (!contiguous) {
+    for (std::size_t i = 0; i < nodes; ++i) top_.push_back(uint32_t(i));
+  } else if (nodes > 0) {
+    std::vector<uint32_t> open{0};
+    while (!open.empty()) {
+      const uint32_t i = open.back();
+      open.pop_back();
+      if (size[i] <= kTaskNodes) {
+        task_root_.push_back(i);
+        continue;
+      }
+      top_.push_back(i);
+      for (const uint32_t code : bvh.nodes[i].child)
+        if (code != kEmptyChild && !(code & kLeafBit)) open.push_back(code);
+    }
+    std::sort(task_root_.begin(), task_root_.end());
+    std::sort(top_.begin(), top_.end());
+    for (const uint32_t root : task_root_) task_end_.push_back(end[root]);
+  }
+  parts_.assign(task_root_.size() + 1, Part{});
 }
 
 void BvhRefit::mark_item(uint32_t item) {
@@ -86,9 +131,17 @@ void BvhRefit::clear_marks() {
 
 std::size_t BvhRefit::bytes() const {
   return (item_leaf_.capacity() + leaf_parent_.capacity() + node_parent_.capacity() + marked_nodes_.capacity() +
-          marked_leaves_.capacity() + order_nodes_.capacity()) * sizeof(uint32_t) +
+          marked_leaves_.capacity()) * sizeof(uint32_t) +
          (node_area_.capacity() + leaf_area_.capacity()) * sizeof(double) + node_mark_.capacity() + leaf_mark_.capacity() +
-         node_box_.capacity() * sizeof(BoxUnion) + node_changed_.capacity();
+         node_box_.capacity() * sizeof(BoxUnion) + node_changed_.capacity() +
+         (revisit_.capacity() + task_root_.capacity() + task_end_.capacity() + top_.capacity()) * sizeof(uint32_t) +
+         parts_bytes();
+}
+
+std::size_t BvhRefit::parts_bytes() const {
+  std::size_t bytes = parts_.capacity() * sizeof(Part);
+  for (const Part& part : parts_) bytes += (part.changed.capacity() + part.revisit.capacity()) * sizeof(uint32_t);
+  return bytes;
 }
 
 double BvhRefit::sah_cost() const {

@@ -41,65 +41,67 @@ class BvhRefit {
   /// False when the numbering is not the build's: the caller then rebuilds, which overwrites
   /// whatever this wrote. The marks stay until clear_marks().
   ///
+  /// box may run on several threads at once, for different leaves; it returns true to have
+  /// its leaf listed in revisit() (what the caller writes afterwards, on its own thread).
+  ///
   /// A slot whose child is not marked already holds that child's box, and a node none of
   /// whose slots changed keeps its box, area and orders (a function of the slots alone): the
   /// bytes of recomputing everything, without the work. Most of a node's slots are unmarked
   /// when few models moved, and the orders were half of a refit's work. The changed nodes'
   /// orders are refreshed after their boxes, at the SIMD level (bvh_orders.hpp): checked, and
   /// sorted again only where they no longer sort; the bytes are the sort's either way.
+  ///
+  /// The subtrees of link()'s tasks (contiguous ranges of nodes) are refit in parallel when
+  /// many nodes are marked, then the nodes above them on the calling thread: every node is
+  /// computed from its own slots and its children's new boxes alone, so neither the split
+  /// nor the thread count can change a byte.
   template <class BoxOf> bool refit(BoxBvh8& bvh, BoxOf&& box) {
-    order_nodes_.clear();
+    if (bvh.nodes.size() != node_mark_.size() || bvh.leaves.size() != leaf_mark_.size()) return false;
     bvh_slots_store_fn* const store = GYRO_DISPATCH(bvh_slots_store);
-    for (std::size_t i = bvh.nodes.size(); i-- > 0;) {
-      if (!node_mark_[i]) continue;
-      BvhNode8& n = bvh.nodes[i];
-      // The slots gathered in a copy of the rows, then compared, stored and united in SIMD
-      // lanes (bvh_slots.hpp).
-      float rows[6][8];
-      std::memcpy(rows, n.bounds, sizeof rows);
-      for (int k = 0; k < 8; ++k) {
-        const uint32_t code = n.child[k];
-        if (code == kEmptyChild) continue;
-        BoxUnion slot;
-        if (code & kLeafBit) {
-          const uint32_t l = code & ~kLeafBit;
-          if (!leaf_mark_[l]) continue;
-          if constexpr (kBoxBvhLeafItems == 1) {
-            // One item: its finite box is its union with the empty one.
-            const uint32_t item = bvh.leaves[l].item[0];
-            if (item != kNoItem) box(l, item, slot.lo, slot.hi);
-          } else {
-            float lo[3], hi[3];
-            for (uint32_t item : bvh.leaves[l].item)
-              if (item != kNoItem) box(l, item, lo, hi), slot.grow(lo, hi);
-          }
-          leaf_area_[l] = slot.half_area();
-        } else {
-          if (code <= i) return false;
-          if (!node_mark_[code] || !node_changed_[code]) continue;
-          slot = node_box_[code];
-        }
-        for (int a = 0; a < 3; ++a) rows[2 * a][k] = slot.lo[a], rows[2 * a + 1][k] = slot.hi[a];
-      }
-      BoxUnion own;
-      const bool changed = store(n, rows, own.lo, own.hi);  // the bits compared, as the build's
-      node_changed_[i] = changed;
-      if (!changed) continue;
-      order_nodes_.push_back(uint32_t(i));
-      node_box_[i] = own;
-      node_area_[i] = own.half_area();
-      if (i == 0) bvh.bounds = aabb_from_min_max({own.lo[0], own.lo[1], own.lo[2]}, {own.hi[0], own.hi[1], own.hi[2]});
-    }
-    // The orders of the changed nodes (bvh_orders.hpp), which no box depends on: each node's
-    // from its own bounds, so fixed chunks on any threads give the same bytes.
+    // The orders of a part's changed nodes (bvh_orders.hpp), which no box depends on, each
+    // node's from its own bounds: refreshed by the thread that just wrote those bounds, while
+    // they are in its cache.
     bvh_orders_refresh_fn* const refresh = GYRO_DISPATCH(bvh_orders_refresh);
-    parallel_for(order_nodes_.size(), kOrderChunk, [&](std::size_t b, std::size_t e) {
-      refresh(bvh.nodes.data(), order_nodes_.data() + b, e - b);
-    });
-    order_nodes_.clear();
+    for (Part& part : parts_) part.changed.clear(), part.revisit.clear(), part.ok = true;
+    const auto run_task = [&](std::size_t t) {
+      const uint32_t root = task_root_[t];
+      if (!node_mark_[root]) return;  // nor any node below it
+      Part& part = parts_[t];
+      for (uint32_t i = task_end_[t]; i-- > root;)
+        if (node_mark_[i]) refit_node(bvh, i, box, store, part);
+      refresh(bvh.nodes.data(), part.changed.data(), part.changed.size());
+    };
+    const std::size_t marked = all_marked_ ? bvh.nodes.size() : marked_nodes_.size();
+    if (marked >= parallel_nodes_) {
+      parallel_for(task_root_.size(), 1, [&](std::size_t b, std::size_t e) {
+        for (std::size_t t = b; t < e; ++t) run_task(t);
+      });
+    } else {
+      for (std::size_t t = 0; t < task_root_.size(); ++t) run_task(t);
+    }
+    Part& top = parts_.back();
+    for (std::size_t k = top_.size(); k-- > 0;)
+      if (node_mark_[top_[k]]) refit_node(bvh, top_[k], box, store, top);
+    refresh(bvh.nodes.data(), top.changed.data(), top.changed.size());
+    // The parts in a fixed order (the tasks', then the top's): the same list at any thread count.
+    revisit_.clear();
+    for (const Part& part : parts_) {
+      if (!part.ok) return false;
+      revisit_.insert(revisit_.end(), part.revisit.begin(), part.revisit.end());
+    }
     bvh.stats.sah_cost = sah_cost();
     return true;
   }
+
+  /// How many marked nodes make refit() run its tasks in parallel (kParallelNodes unless
+  /// set; the bytes are the same either way, which the tests check from 256).
+  void set_parallel_nodes(std::size_t marked) { parallel_nodes_ = marked; }
+
+  /// The subtrees refit() may run in parallel (none when the numbering is not depth first).
+  std::size_t task_count() const { return task_root_.size(); }
+
+  /// The leaves whose box() returned true in the last refit(), in an order fixed by the tree.
+  const std::vector<uint32_t>& revisit() const { return revisit_; }
 
   void clear_marks();
   /// Heap bytes held (the links, areas and marks).
@@ -114,12 +116,76 @@ class BvhRefit {
   std::vector<uint8_t> node_changed_;
   std::vector<uint8_t> node_mark_, leaf_mark_;
   std::vector<uint32_t> marked_nodes_, marked_leaves_;  // what clear_marks() resets
-  // Nodes per parallel chunk of the order refresh: a frame that moves every one of 10^4
-  // models changes all of its 3,030 nodes; fewer than two chunks run on the calling thread.
-  static constexpr std::size_t kOrderChunk = 1024;
-  std::vector<uint32_t> order_nodes_;                   // the nodes refit() changed, for their orders
+  std::vector<uint32_t> revisit_;
+  // Subtrees of at most kTaskNodes nodes, each as large as it can be, that refit() runs as
+  // parallel tasks (R1's 10^4 spheres: 64 tasks of about 47 nodes, 9 nodes above them);
+  // task t holds nodes [task_root_[t], task_end_[t]); top_ holds the rest, ascending.
+  static constexpr uint32_t kTaskNodes = 128;
+  // Marked nodes from which the tasks run in parallel. A refit is memory-bound: on a 2-core
+  // AVX2 VM, refitting every node of R1M's 10^4 spheres took 0.13 ms on one thread and
+  // 0.26-0.32 on two (the lines each thread writes move between the cores), 10^5 spheres
+  // (30k nodes) 2.7-3.3 ms either way, 3 * 10^5 11-12 against 8.6-9.6.
+  static constexpr std::size_t kParallelNodes = 16384;
+  std::size_t parallel_nodes_ = kParallelNodes;
+  std::vector<uint32_t> task_root_, task_end_, top_;
+  // What each task (and, last, the top) changed and was asked to revisit; and whether its
+  // numbering held.
+  struct alignas(64) Part {  // a cache line each: tasks on different threads write their own
+    std::vector<uint32_t> changed, revisit;
+    bool ok = true;
+  };
+  std::vector<Part> parts_;
   bool all_marked_ = false;
 
+  // Node i's slots from its marked children (refit()'s body for one node).
+  template <class BoxOf>
+  void refit_node(BoxBvh8& bvh, uint32_t i, BoxOf& box, bvh_slots_store_fn* store, Part& part) {
+    BvhNode8& n = bvh.nodes[i];
+    // The slots gathered in a copy of the rows, then compared, stored and united in SIMD
+    // lanes (bvh_slots.hpp).
+    float rows[6][8];
+    std::memcpy(rows, n.bounds, sizeof rows);
+    for (int k = 0; k < 8; ++k) {
+      const uint32_t code = n.child[k];
+      if (code == kEmptyChild) continue;
+      BoxUnion slot;
+      if (code & kLeafBit) {
+        const uint32_t l = code & ~kLeafBit;
+        if (!leaf_mark_[l]) continue;
+        bool again = false;
+        if constexpr (kBoxBvhLeafItems == 1) {
+          // One item: its finite box is its union with the empty one.
+          const uint32_t item = bvh.leaves[l].item[0];
+          if (item != kNoItem) again = box(l, item, slot.lo, slot.hi);
+        } else {
+          float lo[3], hi[3];
+          for (uint32_t item : bvh.leaves[l].item)
+            if (item != kNoItem) again |= box(l, item, lo, hi), slot.grow(lo, hi);
+        }
+        if (again) part.revisit.push_back(l);
+        leaf_area_[l] = slot.half_area();
+      } else {
+        if (code <= i) {
+          part.ok = false;
+          return;
+        }
+        if (!node_mark_[code] || !node_changed_[code]) continue;
+        slot = node_box_[code];
+      }
+      for (int a = 0; a < 3; ++a) rows[2 * a][k] = slot.lo[a], rows[2 * a + 1][k] = slot.hi[a];
+    }
+    BoxUnion own;
+    const bool changed = store(n, rows, own.lo, own.hi);  // the bits compared, as the build's
+    node_changed_[i] = changed;
+    if (!changed) return;
+    part.changed.push_back(i);
+    node_box_[i] = own;
+    node_area_[i] = own.half_area();
+    if (i == 0) bvh.bounds = aabb_from_min_max({own.lo[0], own.lo[1], own.lo[2]}, {own.hi[0], own.hi[1], own.hi[2]});
+  }
+
+  void plan_tasks(const BoxBvh8& bvh);
+  std::size_t parts_bytes() const;
   static BoxUnion slots_of(const BvhNode8& node);
   static bool same_bits(float a, float b) { return std::bit_cast<uint32_t>(a) == std::bit_cast<uint32_t>(b); }
   double sah_cost() const;

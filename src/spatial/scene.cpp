@@ -38,6 +38,7 @@
 #include <atomic>
 #include <bit>
 #include <cmath>
+#include <cstring>
 #include <mutex>
 
 namespace gyro {
@@ -150,12 +151,30 @@ struct Corners {
   }
 };
 
-// Whether every value is finite: one test of the bits of each, no branch between them.
-template <std::size_t N> bool all_finite(const float (&v)[N]) {
-  uint32_t bad = 0;
-  for (float x : v) bad |= uint32_t((std::bit_cast<uint32_t>(x) & 0x7f800000u) == 0x7f800000u);
-  return bad == 0;
+// Four floats in the base level's vector registers (SSE2, NEON or the compiler's lowering):
+// IEEE operations lane by lane, the bits of the same scalar expressions.
+using F4 = float __attribute__((vector_size(16)));
+using U4 = uint32_t __attribute__((vector_size(16)));
+
+// Which lanes are not finite (all ones), by the bits; and whether none is.
+inline U4 not_finite4(F4 v) {
+  const U4 e = U4{} + 0x7f800000u;
+  return U4((std::bit_cast<U4>(v) & e) == e);
 }
+inline bool none4(U4 v) {
+  uint64_t half[2];
+  std::memcpy(half, &v, sizeof half);
+  return (half[0] | half[1]) == 0;
+}
+
+// x, y, z to the first three lanes and back (the fourth lane 0 in, not stored out).
+inline F4 lanes(const vec3& v) {
+  F4 r{};
+  std::memcpy(&r, &v, sizeof v);
+  return r;
+}
+inline void store3(vec3& v, F4 r) { std::memcpy(static_cast<void*>(&v), &r, sizeof v); }
+
 
 // Writes p as the placement of a model with def d at world transform w. A sphere (most of a
 // moving scene's models, often) writes only its own fields, in place: the others hold what
@@ -178,14 +197,21 @@ void place(Placed& p, const ModelDef& d, const ModelTransform& w, uint32_t index
     if (m < std::abs(c.y)) m = std::abs(c.y);
     if (m < std::abs(c.z)) m = std::abs(c.z);
     const float pad = kBoxPad * (m + std::abs(r)) + kTinyPad;
-    p.bounds = aabb_from_min_max(c - vec3{r, r, r} - vec3{pad, pad, pad}, c + vec3{r, r, r} + vec3{pad, pad, pad});
+    // The bounds and Corners' values of them in lanes x, y, z (and a fourth, from a zero
+    // centre, never stored): the scalar expressions lane by lane, so the same bits, in fewer
+    // instructions (R1M, every sphere moved: place() 134 -> 100 a sphere).
+    const F4 c4 = lanes(c), r4 = F4{} + r, pad4 = F4{} + pad;
+    const F4 lo = c4 - r4 - pad4, hi = c4 + r4 + pad4;
+    const F4 centre = (lo + hi) * 0.5f, half = (hi - lo) * 0.5f;
+    store3(p.bounds.center, centre);
+    store3(p.bounds.half_extents, half);
     // The other shapes' test, of fewer values: finite corners imply a finite centre and
     // half extent of the bounds (else one corner is inf or NaN), so a finite position, r and
-    // pad, and with the radius finite (check_shape) a finite scale.
-    const vec3 lo = aabb_min(p.bounds), hi = aabb_max(p.bounds);
+    // pad, and with the radius finite (check_shape) a finite scale. The fourth lane is not
+    // finite only when r or pad is not, and then neither is any other.
     const quat& q = w.rotation;
-    const float check[] = {lo.x, lo.y, lo.z, hi.x, hi.y, hi.z, q.x, q.y, q.z, q.w};
-    p.placed = all_finite(check);
+    const F4 q4 = {q.x, q.y, q.z, q.w};
+    p.placed = none4(not_finite4(centre - half) | not_finite4(centre + half) | not_finite4(q4));
     return;
   }
   p = Placed{};
@@ -323,7 +349,6 @@ struct Scene::Impl {
   // The BVH's tree item of each slot (kNoIndex: none) and its links for a partial refit.
   std::vector<uint32_t> slot_item;
   detail::BvhRefit links;
-  std::vector<uint32_t> other_leaves;  // refit_bvh()'s leaves of models other than spheres
 
   void changed() {
     world_ready.store(false, std::memory_order_relaxed);
@@ -551,20 +576,21 @@ struct Scene::Impl {
         if (slot_item[s] != kNoIndex) links.mark_item(slot_item[s]);
     }
     // A refit keeps the items, so a sphere's ray leaf keeps all but its centre and radius,
-    // written as its box is read; the other leaves are written again after the refit. A
-    // refit that is not kept ends in a rebuild, which writes every ray leaf afresh.
-    other_leaves.clear();
+    // written as its box is read (on the refit's threads, each leaf by one); the other
+    // leaves are written again after the refit. A refit that is not kept ends in a rebuild,
+    // which writes every ray leaf afresh.
     const bool ok = links.refit(bvh, [&](uint32_t leaf, uint32_t item, float lo[3], float hi[3]) {
       const Placed& p = placed[tree_slots[item]];
       const Corners c(p);
       for (int a = 0; a < 3; ++a) lo[a] = c.lo[a], hi[a] = c.hi[a];
-      if (p.shape != ModelShape::sphere) return other_leaves.push_back(leaf);
+      if (p.shape != ModelShape::sphere) return true;
       float* sphere = ray_leaves[leaf].sphere;
       sphere[0] = p.box.center.x, sphere[1] = p.box.center.y, sphere[2] = p.box.center.z, sphere[3] = p.box.half_extents.x;
+      return false;
     });
     const bool keep = ok && bvh.stats.sah_cost <= kSceneRefitCost * built_sah;
     if (keep)
-      for (uint32_t l : other_leaves) write_ray_leaf(l);
+      for (uint32_t l : links.revisit()) write_ray_leaf(l);
     links.clear_marks();
     return keep;
   }

@@ -3,6 +3,7 @@
 // every node recomputed from its items, compared to the byte. Both the build and the refit
 // take their shortcuts (one sort per pair of opposite octants; slots whose child did not move,
 // nodes whose slots did not change) on the claim that they give these bytes.
+#include "gyro/runtime.hpp"
 #include "spatial/bvh.hpp"
 #include "spatial/bvh_orders.hpp"
 #include "spatial/bvh_refit.hpp"
@@ -10,6 +11,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstring>
@@ -262,7 +264,11 @@ TEST(BvhRefit, MarkedNodesEqualEveryNodeRecomputed) {
   detail::BoxBvh8 bvh = detail::build_box_bvh8(boxes.data(), n);
   detail::BvhRefit links;
   links.link(bvh, n);
+  EXPECT_GT(links.task_count(), 2u);  // the tree is split for the parallel refit
+  links.set_parallel_nodes(256);       // in parallel from 256 marked nodes (every round of 2^8 moves and more)
   std::size_t unchanged_rounds = 0;
+  const uint32_t saved = thread_count();
+  uint64_t all_order = 0;
   for (int round = 0; round < 40; ++round) {
     // Round sizes from none to all; some moves keep the box (a leaf that does not change),
     // some shrink it inside itself (a leaf that changes under a parent that may not).
@@ -285,9 +291,29 @@ TEST(BvhRefit, MarkedNodesEqualEveryNodeRecomputed) {
     ref.nodes.assign(bvh.nodes.begin(), bvh.nodes.end());
     ref.leaves.assign(bvh.leaves.begin(), bvh.leaves.end());
     recompute_all(ref, items);
-    ASSERT_TRUE(links.refit(bvh, [&](uint32_t, uint32_t item, float lo[3], float hi[3]) {
+    // The subtrees run as parallel tasks when many nodes are marked: the bytes may not
+    // depend on the thread count, nor the leaves asked for again (each marked leaf whose
+    // item is odd, in one order at every count).
+    set_thread_count(1u + uint32_t(round % 3));
+    std::vector<uint8_t> asked(bvh.leaves.size(), 0);
+    ASSERT_TRUE(links.refit(bvh, [&](uint32_t leaf, uint32_t item, float lo[3], float hi[3]) {
       for (int a = 0; a < 3; ++a) lo[a] = items[item].lo[a], hi[a] = items[item].hi[a];
+      asked[leaf] = 1;  // each leaf by one thread
+      return item % 2 == 1;
     }));
+    set_thread_count(saved);
+    std::vector<uint32_t> want_revisit;
+    for (std::size_t l = 0; l < asked.size(); ++l)
+      if (asked[l] && bvh.leaves[l].item[0] % 2 == 1) want_revisit.push_back(uint32_t(l));
+    std::vector<uint32_t> got = links.revisit();
+    uint64_t order = 0xcbf29ce484222325ull;  // FNV-1a over the list
+    for (const uint32_t l : got) order = (order ^ l) * 0x100000001b3ull;
+    std::sort(got.begin(), got.end());
+    EXPECT_EQ(got, want_revisit) << round;
+    if (all) {
+      if (all_order == 0) all_order = order;
+      EXPECT_EQ(order, all_order) << "the all-moved rounds' revisit order, round " << round;
+    }
     links.clear_marks();
     ASSERT_EQ(bvh.nodes.size(), ref.nodes.size());
     for (std::size_t i = 0; i < bvh.nodes.size(); ++i)
