@@ -82,6 +82,9 @@ struct Box : Bounds {
   Box(const Bounds& b) : Bounds(b) {}
 };
 
+// A box's centroid (its corners' mean, lane by lane).
+inline F4 centroid(const Bounds& b) { return (b.lo + b.hi) * 0.5f; }
+
 struct BinaryNode {
   Bounds box;
   uint32_t left, right;   // interior
@@ -347,16 +350,13 @@ class Builder {
   // prim[i] is primitive i's box; a leaf block holds up to leaf_size of them, and the leaf
   // writer receives their indices.
   Builder(DefaultInitVector<Bounds> prims, uint32_t leaf_size)
-      : prim_(std::move(prims)), leaf_size_(leaf_size), leaf_shift_(uint32_t(__builtin_ctz(leaf_size))) {
-    const std::size_t n = prim_.size();
-    centroid_.resize(n);
+      : ref_(std::move(prims)), leaf_size_(leaf_size), leaf_shift_(uint32_t(__builtin_ctz(leaf_size))) {
+    const std::size_t n = ref_.size();
     order_.resize(n);
     scratch_.resize(n);
+    scratch_ref_.resize(n);
     parallel_for(n, kChunkPrims, [&](std::size_t b, std::size_t e) {
-      for (std::size_t i = b; i < e; ++i) {
-        centroid_[i] = (prim_[i].lo + prim_[i].hi) * 0.5f;
-        order_[i] = uint32_t(i);
-      }
+      for (std::size_t i = b; i < e; ++i) order_[i] = uint32_t(i);
     });
   }
 
@@ -466,12 +466,16 @@ class Builder {
     uint32_t node_base = 0, leaf_base = 0;  // its first node and leaf block in the output
   };
 
-  DefaultInitVector<Bounds> prim_;
+  // The primitives' boxes in the order of order_, partitioned with it: each range's binning
+  // and partition stream its boxes from memory instead of gathering them by index (with
+  // the centroids, computed from them, the gathers were R2's build's cache misses).
+  DefaultInitVector<Bounds> ref_;
   uint32_t leaf_size_;   // the most primitives a leaf block holds: a power of two,
   uint32_t leaf_shift_;  // 2^leaf_shift_
-  DefaultInitVector<F4> centroid_;
   DefaultInitVector<uint32_t> order_;
-  DefaultInitVector<uint32_t> scratch_;  // a task partition's right side; at the top, each chunk's both sides
+  // A task partition's right side; at the top, each chunk's both sides (indices and boxes).
+  DefaultInitVector<uint32_t> scratch_;
+  DefaultInitVector<Bounds> scratch_ref_;
   DefaultInitVector<BinaryNode> nodes_;
 
   // The collapse into wide nodes, planned per binary node by dynamic programming over its
@@ -529,8 +533,8 @@ class Builder {
 
   void node_boxes(uint32_t first, uint32_t end, Box& box, Box& cbox) const {
     for (uint32_t i = first; i < end; ++i) {
-      box.grow(prim_[order_[i]]);
-      cbox.grow(centroid_[order_[i]]);
+      box.grow(ref_[i]);
+      cbox.grow(centroid(ref_[i]));
     }
   }
 
@@ -539,13 +543,13 @@ class Builder {
   void bin_range(Bins& bins, const Grid& grid, uint32_t first, uint32_t end) const {
     const F4 lo4 = f4(grid.lo), scale4 = f4(grid.scale);
     for (uint32_t i = first; i < end; ++i) {
-      const uint32_t p = order_[i];
-      F4 f = (centroid_[p] - lo4) * scale4;
+      const Bounds& r = ref_[i];
+      F4 f = (centroid(r) - lo4) * scale4;
       f = f >= 0.0f ? f : F4{};  // NaN too
       f = f < float(grid.bins) ? f : F4{} + float(grid.bins - 1);
       const I4 b = __builtin_convertvector(f, I4);
       for (int axis = 0; axis < 3; ++axis) {
-        bins.box[axis][b[axis]].grow(prim_[p]);
+        bins.box[axis][b[axis]].grow(r);
         ++bins.count[axis][b[axis]];
       }
     }
@@ -634,14 +638,14 @@ class Builder {
         Box box[2], cbox[2];
         uint32_t l = p.begin, r = p.end;
         for (uint32_t i = p.begin; i < p.end; ++i) {
-          const uint32_t q = order_[i];
-          const F4 c = centroid_[q];
+          const Bounds q = ref_[i];
+          const F4 c = centroid(q);
           if (grid[p.range].bin(c, pl.axis) > pl.bin) {
-            scratch_[--r] = q;
-            box[1].grow(prim_[q]), cbox[1].grow(c);
+            scratch_[--r] = order_[i], scratch_ref_[r] = q;
+            box[1].grow(q), cbox[1].grow(c);
           } else {
-            scratch_[l++] = q;
-            box[0].grow(prim_[q]), cbox[0].grow(c);
+            scratch_[l] = order_[i], scratch_ref_[l++] = q;
+            box[0].grow(q), cbox[0].grow(c);
           }
         }
         Split& sp = part[k];
@@ -661,9 +665,11 @@ class Builder {
       each_piece([&](std::size_t k, const Piece& p) {
         if (plane[p.range].axis < 0) return;
         const uint32_t first = level[p.range].first, mid = p.begin + part[k].left;
-        std::copy(scratch_.data() + p.begin, scratch_.data() + mid, order_.data() + first + left_at[k]);
-        std::reverse_copy(scratch_.data() + mid, scratch_.data() + p.end,
-                          order_.data() + first + left_total[p.range] + right_at[k]);
+        const uint32_t to_left = first + left_at[k], to_right = first + left_total[p.range] + right_at[k];
+        std::copy(scratch_.data() + p.begin, scratch_.data() + mid, order_.data() + to_left);
+        std::reverse_copy(scratch_.data() + mid, scratch_.data() + p.end, order_.data() + to_right);
+        std::copy(scratch_ref_.data() + p.begin, scratch_ref_.data() + mid, ref_.data() + to_left);
+        std::reverse_copy(scratch_ref_.data() + mid, scratch_ref_.data() + p.end, ref_.data() + to_right);
       });
       next.clear();
       for (uint32_t r = 0; r < level.size(); ++r) {
@@ -759,21 +765,25 @@ class Builder {
     if (plane.axis < 0) return 0;
     uint32_t* const range = order_.data() + first;
     uint32_t* const spill = scratch_.data() + first;  // this range's own: subtrees run in parallel
+    Bounds* const range_ref = ref_.data() + first;
+    Bounds* const spill_ref = scratch_ref_.data() + first;
     uint32_t left = 0, right = 0;
     Box lbox, lcbox, rbox, rcbox;  // locals, not sides[]: they stay in registers
     for (uint32_t i = 0; i < count; ++i) {
       const uint32_t p = range[i];
-      const F4 c = centroid_[p];
+      const Bounds q = range_ref[i];
+      const F4 c = centroid(q);
       if (grid.bin(c, plane.axis) > plane.bin) {
-        spill[right++] = p;
-        rbox.grow(prim_[p]), rcbox.grow(c);
+        spill[right] = p, spill_ref[right++] = q;
+        rbox.grow(q), rcbox.grow(c);
       } else {
-        range[left++] = p;
-        lbox.grow(prim_[p]), lcbox.grow(c);
+        range[left] = p, range_ref[left++] = q;
+        lbox.grow(q), lcbox.grow(c);
       }
     }
     sides[0][0] = lbox, sides[0][1] = lcbox, sides[1][0] = rbox, sides[1][1] = rcbox;
     std::copy(spill, spill + right, range + left);
+    std::copy(spill_ref, spill_ref + right, range_ref + left);
     return left;
   }
 
@@ -785,10 +795,21 @@ class Builder {
       const float e = cbox.hi[a] - cbox.lo[a];
       if (e > ext) ext = e, axis = a;
     }
-    std::sort(order_.begin() + first, order_.begin() + first + count, [&](uint32_t p, uint32_t q) {
-      const float cp = centroid_[p][axis], cq = centroid_[q][axis];
-      return cp < cq || (cp == cq && p < q);
+    // The range's (index, box) pairs sorted together, through the scratch buffers (this
+    // range's own: subtrees run in parallel).
+    uint32_t* const at = scratch_.data() + first;  // at[k]: the position in the range of the k-th
+    for (uint32_t k = 0; k < count; ++k) at[k] = k;
+    const uint32_t* const index = order_.data() + first;
+    const Bounds* const box = ref_.data() + first;
+    std::sort(at, at + count, [&](uint32_t a, uint32_t b) {
+      const float ca = centroid(box[a])[axis], cb = centroid(box[b])[axis];
+      return ca < cb || (ca == cb && index[a] < index[b]);
     });
+    Bounds* const sorted = scratch_ref_.data() + first;
+    for (uint32_t k = 0; k < count; ++k) sorted[k] = box[at[k]];
+    for (uint32_t k = 0; k < count; ++k) at[k] = index[at[k]];
+    std::copy(at, at + count, order_.data() + first);
+    std::copy(sorted, sorted + count, ref_.data() + first);
     return count / 2;
   }
 
