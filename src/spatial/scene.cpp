@@ -129,9 +129,12 @@ struct Placed {
   ModelShape shape = ModelShape::sphere;
   uint32_t index = 0;  // the id's index: the tie-break of every query
   bool placed = false;
-  ModelTransform world;
-  OBB box;  // a box's box, a mesh's oriented bounds (orientation: the world rotation)
+  // What a refit reads of every moved model, the shape, the bounds and a sphere's centre and
+  // radius, in the first 60 bytes (two cache lines at most instead of three: the refit
+  // gathers them in the tree's order, not the slots').
   AABB bounds;
+  OBB box;  // a box's box, a mesh's oriented bounds (orientation: the world rotation)
+  ModelTransform world;
   const TriangleMesh* mesh = nullptr;
 
   Sphere sphere() const { return {box.center, box.half_extents.x}; }
