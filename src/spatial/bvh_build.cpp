@@ -350,11 +350,11 @@ class Builder {
   // prim[i] is primitive i's box; a leaf block holds up to leaf_size of them, and the leaf
   // writer receives their indices.
   Builder(DefaultInitVector<Bounds> prims, uint32_t leaf_size)
-      : ref_(std::move(prims)), leaf_size_(leaf_size), leaf_shift_(uint32_t(__builtin_ctz(leaf_size))) {
-    const std::size_t n = ref_.size();
+      : prim_box_(std::move(prims)), leaf_size_(leaf_size), leaf_shift_(uint32_t(__builtin_ctz(leaf_size))) {
+    const std::size_t n = prim_box_.size();
     order_.resize(n);
     scratch_.resize(n);
-    scratch_ref_.resize(n);
+    scratch_box_.resize(n);
     parallel_for(n, kChunkPrims, [&](std::size_t b, std::size_t e) {
       for (std::size_t i = b; i < e; ++i) order_[i] = uint32_t(i);
     });
@@ -469,13 +469,13 @@ class Builder {
   // The primitives' boxes in the order of order_, partitioned with it: each range's binning
   // and partition stream its boxes from memory instead of gathering them by index (with
   // the centroids, computed from them, the gathers were R2's build's cache misses).
-  DefaultInitVector<Bounds> ref_;
+  DefaultInitVector<Bounds> prim_box_;
   uint32_t leaf_size_;   // the most primitives a leaf block holds: a power of two,
   uint32_t leaf_shift_;  // 2^leaf_shift_
   DefaultInitVector<uint32_t> order_;
   // A task partition's right side; at the top, each chunk's both sides (indices and boxes).
   DefaultInitVector<uint32_t> scratch_;
-  DefaultInitVector<Bounds> scratch_ref_;
+  DefaultInitVector<Bounds> scratch_box_;
   DefaultInitVector<BinaryNode> nodes_;
 
   // The collapse into wide nodes, planned per binary node by dynamic programming over its
@@ -533,8 +533,8 @@ class Builder {
 
   void node_boxes(uint32_t first, uint32_t end, Box& box, Box& cbox) const {
     for (uint32_t i = first; i < end; ++i) {
-      box.grow(ref_[i]);
-      cbox.grow(centroid(ref_[i]));
+      box.grow(prim_box_[i]);
+      cbox.grow(centroid(prim_box_[i]));
     }
   }
 
@@ -543,7 +543,7 @@ class Builder {
   void bin_range(Bins& bins, const Grid& grid, uint32_t first, uint32_t end) const {
     const F4 lo4 = f4(grid.lo), scale4 = f4(grid.scale);
     for (uint32_t i = first; i < end; ++i) {
-      const Bounds& r = ref_[i];
+      const Bounds& r = prim_box_[i];
       F4 f = (centroid(r) - lo4) * scale4;
       f = f >= 0.0f ? f : F4{};  // NaN too
       f = f < float(grid.bins) ? f : F4{} + float(grid.bins - 1);
@@ -638,13 +638,13 @@ class Builder {
         Box box[2], cbox[2];
         uint32_t l = p.begin, r = p.end;
         for (uint32_t i = p.begin; i < p.end; ++i) {
-          const Bounds q = ref_[i];
+          const Bounds q = prim_box_[i];
           const F4 c = centroid(q);
           if (grid[p.range].bin(c, pl.axis) > pl.bin) {
-            scratch_[--r] = order_[i], scratch_ref_[r] = q;
+            scratch_[--r] = order_[i], scratch_box_[r] = q;
             box[1].grow(q), cbox[1].grow(c);
           } else {
-            scratch_[l] = order_[i], scratch_ref_[l++] = q;
+            scratch_[l] = order_[i], scratch_box_[l++] = q;
             box[0].grow(q), cbox[0].grow(c);
           }
         }
@@ -668,8 +668,8 @@ class Builder {
         const uint32_t to_left = first + left_at[k], to_right = first + left_total[p.range] + right_at[k];
         std::copy(scratch_.data() + p.begin, scratch_.data() + mid, order_.data() + to_left);
         std::reverse_copy(scratch_.data() + mid, scratch_.data() + p.end, order_.data() + to_right);
-        std::copy(scratch_ref_.data() + p.begin, scratch_ref_.data() + mid, ref_.data() + to_left);
-        std::reverse_copy(scratch_ref_.data() + mid, scratch_ref_.data() + p.end, ref_.data() + to_right);
+        std::copy(scratch_box_.data() + p.begin, scratch_box_.data() + mid, prim_box_.data() + to_left);
+        std::reverse_copy(scratch_box_.data() + mid, scratch_box_.data() + p.end, prim_box_.data() + to_right);
       });
       next.clear();
       for (uint32_t r = 0; r < level.size(); ++r) {
@@ -694,7 +694,6 @@ class Builder {
   }
 
   // Builds the subtree over order_[first, first + count) into `nodes`; returns its root.
-  // `known` holds the range's box and centroid box when they are already gathered.
   // `known` holds the range's box and centroid box when they are already gathered (by the
   // parent's partition, which visits each side's primitives in the order they end up in, so
   // the boxes have the bits a gathering pass would give them, signed zeros included).
@@ -765,25 +764,25 @@ class Builder {
     if (plane.axis < 0) return 0;
     uint32_t* const range = order_.data() + first;
     uint32_t* const spill = scratch_.data() + first;  // this range's own: subtrees run in parallel
-    Bounds* const range_ref = ref_.data() + first;
-    Bounds* const spill_ref = scratch_ref_.data() + first;
+    Bounds* const range_box = prim_box_.data() + first;
+    Bounds* const spill_box = scratch_box_.data() + first;
     uint32_t left = 0, right = 0;
     Box lbox, lcbox, rbox, rcbox;  // locals, not sides[]: they stay in registers
     for (uint32_t i = 0; i < count; ++i) {
       const uint32_t p = range[i];
-      const Bounds q = range_ref[i];
+      const Bounds q = range_box[i];
       const F4 c = centroid(q);
       if (grid.bin(c, plane.axis) > plane.bin) {
-        spill[right] = p, spill_ref[right++] = q;
+        spill[right] = p, spill_box[right++] = q;
         rbox.grow(q), rcbox.grow(c);
       } else {
-        range[left] = p, range_ref[left++] = q;
+        range[left] = p, range_box[left++] = q;
         lbox.grow(q), lcbox.grow(c);
       }
     }
     sides[0][0] = lbox, sides[0][1] = lcbox, sides[1][0] = rbox, sides[1][1] = rcbox;
     std::copy(spill, spill + right, range + left);
-    std::copy(spill_ref, spill_ref + right, range_ref + left);
+    std::copy(spill_box, spill_box + right, range_box + left);
     return left;
   }
 
@@ -800,16 +799,16 @@ class Builder {
     uint32_t* const at = scratch_.data() + first;  // at[k]: the position in the range of the k-th
     for (uint32_t k = 0; k < count; ++k) at[k] = k;
     const uint32_t* const index = order_.data() + first;
-    const Bounds* const box = ref_.data() + first;
+    const Bounds* const box = prim_box_.data() + first;
     std::sort(at, at + count, [&](uint32_t a, uint32_t b) {
       const float ca = centroid(box[a])[axis], cb = centroid(box[b])[axis];
       return ca < cb || (ca == cb && index[a] < index[b]);
     });
-    Bounds* const sorted = scratch_ref_.data() + first;
+    Bounds* const sorted = scratch_box_.data() + first;
     for (uint32_t k = 0; k < count; ++k) sorted[k] = box[at[k]];
     for (uint32_t k = 0; k < count; ++k) at[k] = index[at[k]];
     std::copy(at, at + count, order_.data() + first);
-    std::copy(sorted, sorted + count, ref_.data() + first);
+    std::copy(sorted, sorted + count, prim_box_.data() + first);
     return count / 2;
   }
 
