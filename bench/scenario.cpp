@@ -49,13 +49,17 @@ double median(std::vector<double> v) {
   return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
 }
 
-double median_ms(int reps, const std::function<void()>& fn) {
+double median_ms(int reps, const std::function<void()>& fn) { return median_ms(reps, fn, [] {}); }
+
+double median_ms(int reps, const std::function<void()>& fn, const std::function<void()>& untimed) {
   fn();  // warm-up: page faults, thread pool start
+  untimed();
   std::vector<double> t;
   for (int i = 0; i < std::max(1, reps); ++i) {
     const auto a = std::chrono::steady_clock::now();
     fn();
     const auto b = std::chrono::steady_clock::now();
+    untimed();
     t.push_back(std::chrono::duration<double, std::milli>(b - a).count());
   }
   return median(std::move(t));

@@ -39,6 +39,9 @@ class JsonLine {
 double median(std::vector<double> v);
 /// Median wall time in milliseconds of `reps` runs of fn (after one warm-up run).
 double median_ms(int reps, const std::function<void()>& fn);
+/// The same, with `untimed` called after each run of fn outside the clock: where a run's
+/// result replaces the last one, its release (a peer's is never timed) goes there.
+double median_ms(int reps, const std::function<void()>& fn, const std::function<void()>& untimed);
 
 /// The levels to run: the requested ones that are available, or all available.
 std::vector<SimdLevel> levels_to_run(const Options& o);
