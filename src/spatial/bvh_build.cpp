@@ -350,13 +350,13 @@ class Builder {
   // prim[i] is primitive i's box; a leaf block holds up to leaf_size of them, and the leaf
   // writer receives their indices.
   Builder(DefaultInitVector<Bounds> prims, uint32_t leaf_size)
-      : prim_box_(std::move(prims)), leaf_size_(leaf_size), leaf_shift_(uint32_t(__builtin_ctz(leaf_size))) {
-    const std::size_t n = prim_box_.size();
-    order_.resize(n);
-    scratch_.resize(n);
-    scratch_box_.resize(n);
+      : box_{std::move(prims), {}}, leaf_size_(leaf_size), leaf_shift_(uint32_t(__builtin_ctz(leaf_size))) {
+    const std::size_t n = box_[0].size();
+    index_[0].resize(n);
+    index_[1].resize(n);
+    box_[1].resize(n);
     parallel_for(n, kChunkPrims, [&](std::size_t b, std::size_t e) {
-      for (std::size_t i = b; i < e; ++i) order_[i] = uint32_t(i);
+      for (std::size_t i = b; i < e; ++i) index_[0][i] = uint32_t(i);
     });
   }
 
@@ -410,7 +410,7 @@ class Builder {
     };
     const auto write_leaf = [&](uint32_t binary, uint32_t at) {
       const BinaryNode& b = nodes_[binary];
-      leaf(out.leaves[at], order_.data() + b.first, b.count);
+      leaf(out.leaves[at], index_[0].data() + b.first, b.count);
       leaf_area[at] = b.box.half_area();
     };
     parallel_for(sub.size() + 1, 1, [&](std::size_t b, std::size_t e) {
@@ -466,16 +466,32 @@ class Builder {
     uint32_t node_base = 0, leaf_base = 0;  // its first node and leaf block in the output
   };
 
-  // The primitives' boxes in the order of order_, partitioned with it: each range's binning
-  // and partition stream its boxes from memory instead of gathering them by index (with
-  // the centroids, computed from them, the gathers were R2's build's cache misses).
-  DefaultInitVector<Bounds> prim_box_;
+  // The primitives' indices and boxes in two buffers that the partitions alternate between:
+  // a range at depth d lies in buffer d & 1, each split (by SAH or by the median) writes
+  // both sides into the other buffer, each where it ends up, and a leaf at an odd depth
+  // copies its few indices back into buffer 0, where the leaf writer reads them. The boxes
+  // move with their indices, so binning and partitions stream them from memory instead of
+  // gathering them by index (with the centroids, the gathers were R2's build's cache
+  // misses). One buffer with a scratch copy back after each partition (the right side of a
+  // task's, everything at the top) moved about 240 MB more for R2.
+  DefaultInitVector<uint32_t> index_[2];
+  DefaultInitVector<Bounds> box_[2];
   uint32_t leaf_size_;   // the most primitives a leaf block holds: a power of two,
   uint32_t leaf_shift_;  // 2^leaf_shift_
-  DefaultInitVector<uint32_t> order_;
-  // A task partition's right side; at the top, each chunk's both sides (indices and boxes).
-  DefaultInitVector<uint32_t> scratch_;
-  DefaultInitVector<Bounds> scratch_box_;
+  uint32_t* index_at(std::size_t depth) { return index_[depth & 1].data(); }
+  Bounds* box_at(std::size_t depth) { return box_[depth & 1].data(); }
+  const Bounds* box_at(std::size_t depth) const { return box_[depth & 1].data(); }
+  // A leaf's indices where the leaf writer reads them.
+  void settle_leaf(uint32_t first, uint32_t count, std::size_t depth) {
+    if (depth & 1) std::copy(index_[1].data() + first, index_[1].data() + first + count, index_[0].data() + first);
+  }
+  // How many of bins go left of plane (bins [0, plane.bin] on its axis): the partition's
+  // own count, as the partition bins each primitive by the same expressions.
+  static uint32_t left_of(const Bins& bins, const Plane& plane) {
+    uint32_t n = 0;
+    for (int b = 0; b <= plane.bin; ++b) n += bins.count[plane.axis][b];
+    return n;
+  }
   DefaultInitVector<BinaryNode> nodes_;
 
   // The collapse into wide nodes, planned per binary node by dynamic programming over its
@@ -531,19 +547,21 @@ class Builder {
     }
   }
 
-  void node_boxes(uint32_t first, uint32_t end, Box& box, Box& cbox) const {
+  void node_boxes(uint32_t first, uint32_t end, std::size_t depth, Box& box, Box& cbox) const {
+    const Bounds* const boxes = box_at(depth);
     for (uint32_t i = first; i < end; ++i) {
-      box.grow(prim_box_[i]);
-      cbox.grow(centroid(prim_box_[i]));
+      box.grow(boxes[i]);
+      cbox.grow(centroid(boxes[i]));
     }
   }
 
   // A primitive's bins along all three axes from one vector expression (Grid::bin()'s
   // operations and clamps, lane by lane).
-  void bin_range(Bins& bins, const Grid& grid, uint32_t first, uint32_t end) const {
+  void bin_range(Bins& bins, const Grid& grid, uint32_t first, uint32_t end, std::size_t depth) const {
     const F4 lo4 = f4(grid.lo), scale4 = f4(grid.scale);
+    const Bounds* const boxes = box_at(depth);
     for (uint32_t i = first; i < end; ++i) {
-      const Bounds& r = prim_box_[i];
+      const Bounds& r = boxes[i];
       F4 f = (centroid(r) - lo4) * scale4;
       f = f >= 0.0f ? f : F4{};  // NaN too
       f = f < float(grid.bins) ? f : F4{} + float(grid.bins - 1);
@@ -574,13 +592,12 @@ class Builder {
     struct Piece {
       uint32_t range, begin, end;
     };
-    // A piece's partition: its left count and both sides' boxes and centroid boxes.
+    // A piece's partition: both sides' boxes and centroid boxes.
     struct Split {
-      uint32_t left = 0;
       Box box[2], cbox[2];
     };
     std::vector<Open> level(1), next;
-    level[0].first = 0, level[0].count = uint32_t(order_.size()), level[0].parent = kNoParent;
+    level[0].first = 0, level[0].count = uint32_t(index_[0].size()), level[0].parent = kNoParent;
     level[0].side = 0, level[0].depth = 0, level[0].known = false;
     while (!level.empty()) {
       std::vector<Piece> pieces;
@@ -594,7 +611,7 @@ class Builder {
       };
       std::vector<Split> part(pieces.size());
       each_piece([&](std::size_t k, const Piece& p) {
-        if (!level[p.range].known) node_boxes(p.begin, p.end, part[k].box[0], part[k].cbox[0]);
+        if (!level[p.range].known) node_boxes(p.begin, p.end, level[p.range].depth, part[k].box[0], part[k].cbox[0]);
       });
       for (std::size_t k = 0; k < pieces.size(); ++k) {
         Open& o = level[pieces[k].range];
@@ -611,7 +628,7 @@ class Builder {
         node[r] = uint32_t(nodes_.size());
         nodes_.push_back({o.box, 0, 0, 0, 0});
         if (o.parent != kNoParent) (o.side ? nodes_[o.parent].right : nodes_[o.parent].left) = node[r];
-        if (o.count <= leaf_size_) nodes_[node[r]].first = o.first, nodes_[node[r]].count = o.count;
+        if (o.count <= leaf_size_) nodes_[node[r]].first = o.first, nodes_[node[r]].count = o.count, settle_leaf(o.first, o.count, o.depth);
         else if (o.count <= kTaskPrims) tasks.push_back({o.first, o.count, node[r], o.depth, o.box, o.cbox});
         // Past this depth only median splits, which end within log2(count) <= 31 more levels.
         else split[r] = o.depth + 33 < kBvhMaxDepth ? 1 : 2;
@@ -620,7 +637,7 @@ class Builder {
       static_assert(bins_for(kTaskPrims) == kBins);
       std::vector<Bins> bins(pieces.size());
       each_piece([&](std::size_t k, const Piece& p) {
-        if (split[p.range] == 1) bin_range(bins[k], grid[p.range], p.begin, p.end);
+        if (split[p.range] == 1) bin_range(bins[k], grid[p.range], p.begin, p.end, level[p.range].depth);
       });
       std::vector<Bins> merged(level.size());
       for (std::size_t k = 0; k < pieces.size(); ++k)
@@ -628,55 +645,51 @@ class Builder {
       std::vector<Plane> plane(level.size());
       for (uint32_t r = 0; r < level.size(); ++r)
         if (split[r] == 1) plane[r] = best_plane(merged[r], level[r].count, grid[r], leaf_shift_);
-      // The stable partition in parallel: each piece sorts its items into its own stretch of
-      // scratch_ (the left side forward, the right side backward from its end) and gathers
-      // both sides' boxes for the next level; the counts then give every piece its places.
-      for (Split& sp : part) sp = Split{};
-      each_piece([&](std::size_t k, const Piece& p) {
-        const Plane& pl = plane[p.range];
-        if (pl.axis < 0) return;
-        Box box[2], cbox[2];
-        uint32_t l = p.begin, r = p.end;
-        for (uint32_t i = p.begin; i < p.end; ++i) {
-          const Bounds q = prim_box_[i];
-          const F4 c = centroid(q);
-          if (grid[p.range].bin(c, pl.axis) > pl.bin) {
-            scratch_[--r] = order_[i], scratch_box_[r] = q;
-            box[1].grow(q), cbox[1].grow(c);
-          } else {
-            scratch_[l] = order_[i], scratch_box_[l++] = q;
-            box[0].grow(q), cbox[0].grow(c);
-          }
-        }
-        Split& sp = part[k];
-        sp.left = l - p.begin;
-        for (int side = 0; side < 2; ++side) sp.box[side] = box[side], sp.cbox[side] = cbox[side];
-      });
+      // Each piece's left count from its bins, and from those every piece's places: the
+      // stable partition then writes both sides straight into the other buffer, in parallel,
+      // gathering both sides' boxes for the next level.
       std::vector<uint32_t> left_total(level.size(), 0), left_at(pieces.size()), right_at(pieces.size());
       for (std::size_t k = 0; k < pieces.size(); ++k) {
         const uint32_t r = pieces[k].range;
+        if (plane[r].axis < 0) continue;
         left_at[k] = left_total[r];
         right_at[k] = pieces[k].begin - level[r].first - left_total[r];
-        left_total[r] += part[k].left;
+        left_total[r] += left_of(bins[k], plane[r]);
       }
       // A plane with everything on one side partitions nothing: the median split follows.
       for (uint32_t r = 0; r < level.size(); ++r)
         if (plane[r].axis >= 0 && (left_total[r] == 0 || left_total[r] == level[r].count)) plane[r].axis = -1;
+      for (Split& sp : part) sp = Split{};
       each_piece([&](std::size_t k, const Piece& p) {
-        if (plane[p.range].axis < 0) return;
-        const uint32_t first = level[p.range].first, mid = p.begin + part[k].left;
-        const uint32_t to_left = first + left_at[k], to_right = first + left_total[p.range] + right_at[k];
-        std::copy(scratch_.data() + p.begin, scratch_.data() + mid, order_.data() + to_left);
-        std::reverse_copy(scratch_.data() + mid, scratch_.data() + p.end, order_.data() + to_right);
-        std::copy(scratch_box_.data() + p.begin, scratch_box_.data() + mid, prim_box_.data() + to_left);
-        std::reverse_copy(scratch_box_.data() + mid, scratch_box_.data() + p.end, prim_box_.data() + to_right);
+        const Plane& pl = plane[p.range];
+        if (pl.axis < 0) return;
+        const Open& o = level[p.range];
+        const uint32_t* const from = index_at(o.depth);
+        const Bounds* const from_box = box_at(o.depth);
+        uint32_t* const to = index_at(o.depth + 1);
+        Bounds* const to_box = box_at(o.depth + 1);
+        Box box[2], cbox[2];
+        uint32_t l = o.first + left_at[k], r = o.first + left_total[p.range] + right_at[k];
+        for (uint32_t i = p.begin; i < p.end; ++i) {
+          const Bounds q = from_box[i];
+          const F4 c = centroid(q);
+          if (grid[p.range].bin(c, pl.axis) > pl.bin) {
+            to[r] = from[i], to_box[r++] = q;
+            box[1].grow(q), cbox[1].grow(c);
+          } else {
+            to[l] = from[i], to_box[l++] = q;
+            box[0].grow(q), cbox[0].grow(c);
+          }
+        }
+        Split& sp = part[k];
+        for (int side = 0; side < 2; ++side) sp.box[side] = box[side], sp.cbox[side] = cbox[side];
       });
       next.clear();
       for (uint32_t r = 0; r < level.size(); ++r) {
         if (!split[r]) continue;
         const Open& o = level[r];
         const bool known = plane[r].axis >= 0;
-        const uint32_t left = known ? left_total[r] : median_split(o.first, o.count, o.cbox);
+        const uint32_t left = known ? left_total[r] : median_split(o.first, o.count, o.depth, o.cbox);
         next.push_back({o.first, left, node[r], 0, o.depth + 1, known, {}, {}});
         next.push_back({o.first + left, o.count - left, node[r], 1, o.depth + 1, known, {}, {}});
       }
@@ -693,7 +706,8 @@ class Builder {
     }
   }
 
-  // Builds the subtree over order_[first, first + count) into `nodes`; returns its root.
+  // Builds the subtree over the primitives [first, first + count) of buffer depth & 1 into
+  // `nodes`; returns its root.
   // `known` holds the range's box and centroid box when they are already gathered (by the
   // parent's partition, which visits each side's primitives in the order they end up in, so
   // the boxes have the bits a gathering pass would give them, signed zeros included).
@@ -701,19 +715,20 @@ class Builder {
                  const Box* known = nullptr) {
     Box box, cbox;
     if (known) box = known[0], cbox = known[1];
-    else node_boxes(first, first + count, box, cbox);
+    else node_boxes(first, first + count, depth, box, cbox);
     const uint32_t index = uint32_t(nodes.size());
     nodes.push_back({box, 0, 0, 0, 0});
     if (count <= leaf_size_) {
       nodes[index].first = first, nodes[index].count = count;
+      settle_leaf(first, count, depth);
       return index;
     }
     uint32_t left_count = 0;
     Box sides[2][2];  // [side]{box, cbox}
     // Past this depth only median splits, which end within log2(count) <= 31 more levels.
-    if (depth + 33 < kBvhMaxDepth) left_count = sah_split(first, count, cbox, sides);
-    const bool split = left_count != 0 && left_count != count;
-    if (!split) left_count = median_split(first, count, cbox);
+    if (depth + 33 < kBvhMaxDepth) left_count = sah_split(first, count, depth, cbox, sides);
+    const bool split = left_count != 0;
+    if (!split) left_count = median_split(first, count, depth, cbox);
     const uint32_t l = build(nodes, first, left_count, depth + 1, split ? sides[0] : nullptr);
     const uint32_t r = build(nodes, first + left_count, count - left_count, depth + 1, split ? sides[1] : nullptr);
     nodes[index].left = l, nodes[index].right = r;
@@ -752,63 +767,61 @@ class Builder {
     });
   }
 
-  // Binned SAH for a task's node: the best plane, and the stable partition through a scratch
-  // buffer with no allocation, gathering both sides' boxes and centroid boxes into `sides`
-  // (in place of a pass over each child's range: R2's build 1718 -> 1685 M instructions);
-  // returns the left count (0 if no plane).
-  uint32_t sah_split(uint32_t first, uint32_t count, const Box& cbox, Box (&sides)[2][2]) {
+  // Binned SAH for a task's node at `depth`: the best plane, and the stable partition into
+  // the other buffer (each side where its count from the bins puts it), gathering both
+  // sides' boxes and centroid boxes into `sides` (in place of a pass over each child's
+  // range: R2's build 1718 -> 1685 M instructions); returns the left count, or 0 (no plane,
+  // nothing partitioned).
+  uint32_t sah_split(uint32_t first, uint32_t count, std::size_t depth, const Box& cbox, Box (&sides)[2][2]) {
     const Grid grid(cbox, count);
     Bins bins(grid.bins);
-    bin_range(bins, grid, first, first + count);
+    bin_range(bins, grid, first, first + count, depth);
     const Plane plane = best_plane(bins, count, grid, leaf_shift_);
     if (plane.axis < 0) return 0;
-    uint32_t* const range = order_.data() + first;
-    uint32_t* const spill = scratch_.data() + first;  // this range's own: subtrees run in parallel
-    Bounds* const range_box = prim_box_.data() + first;
-    Bounds* const spill_box = scratch_box_.data() + first;
-    uint32_t left = 0, right = 0;
+    const uint32_t left = left_of(bins, plane);
+    if (left == 0 || left == count) return 0;
+    const uint32_t* const from = index_at(depth) + first;  // this range's own: subtrees run in parallel
+    const Bounds* const from_box = box_at(depth) + first;
+    uint32_t* const to = index_at(depth + 1) + first;
+    Bounds* const to_box = box_at(depth + 1) + first;
+    uint32_t l = 0, r = left;
     Box lbox, lcbox, rbox, rcbox;  // locals, not sides[]: they stay in registers
     for (uint32_t i = 0; i < count; ++i) {
-      const uint32_t p = range[i];
-      const Bounds q = range_box[i];
+      const uint32_t p = from[i];
+      const Bounds q = from_box[i];
       const F4 c = centroid(q);
       if (grid.bin(c, plane.axis) > plane.bin) {
-        spill[right] = p, spill_box[right++] = q;
+        to[r] = p, to_box[r++] = q;
         rbox.grow(q), rcbox.grow(c);
       } else {
-        range[left] = p, range_box[left++] = q;
+        to[l] = p, to_box[l++] = q;
         lbox.grow(q), lcbox.grow(c);
       }
     }
     sides[0][0] = lbox, sides[0][1] = lcbox, sides[1][0] = rbox, sides[1][1] = rcbox;
-    std::copy(spill, spill + right, range + left);
-    std::copy(spill_box, spill_box + right, range_box + left);
     return left;
   }
 
-  // Half by count along the widest centroid axis, ordered by (centroid, index).
-  uint32_t median_split(uint32_t first, uint32_t count, const Box& cbox) {
+  // Half by count along the widest centroid axis, ordered by (centroid, index), into the
+  // other buffer (which first holds the sort's positions).
+  uint32_t median_split(uint32_t first, uint32_t count, std::size_t depth, const Box& cbox) {
     int axis = 0;
     float ext = -1.0f;
     for (int a = 0; a < 3; ++a) {
       const float e = cbox.hi[a] - cbox.lo[a];
       if (e > ext) ext = e, axis = a;
     }
-    // The range's (index, box) pairs sorted together, through the scratch buffers (this
-    // range's own: subtrees run in parallel).
-    uint32_t* const at = scratch_.data() + first;  // at[k]: the position in the range of the k-th
+    uint32_t* const at = index_at(depth + 1) + first;  // at[k]: the position in the range of the k-th
     for (uint32_t k = 0; k < count; ++k) at[k] = k;
-    const uint32_t* const index = order_.data() + first;
-    const Bounds* const box = prim_box_.data() + first;
+    const uint32_t* const index = index_at(depth) + first;
+    const Bounds* const box = box_at(depth) + first;
     std::sort(at, at + count, [&](uint32_t a, uint32_t b) {
       const float ca = centroid(box[a])[axis], cb = centroid(box[b])[axis];
       return ca < cb || (ca == cb && index[a] < index[b]);
     });
-    Bounds* const sorted = scratch_box_.data() + first;
+    Bounds* const sorted = box_at(depth + 1) + first;
     for (uint32_t k = 0; k < count; ++k) sorted[k] = box[at[k]];
     for (uint32_t k = 0; k < count; ++k) at[k] = index[at[k]];
-    std::copy(at, at + count, order_.data() + first);
-    std::copy(sorted, sorted + count, prim_box_.data() + first);
     return count / 2;
   }
 
