@@ -293,12 +293,11 @@ struct Grid {
       if (!(scale[axis] < kInf)) scale[axis] = 0.0f;
     }
   }
-  // Clamped as a float before the conversion: a float past INT_MAX (or NaN) has no int.
-  int bin(const F4& c, int axis) const {
-    const float f = (c[axis] - lo[axis]) * scale[axis];
-    if (!(f >= 0.0f)) return 0;
-    return f < float(bins) ? int(f) : bins - 1;
-  }
+  // Whether centroid c falls in a bin above `bin` < bins - 1 along axis (a plane's test),
+  // from the binning's f = (c - lo) * scale without its clamps and conversion: the bin is
+  // f's integer part clamped to [0, bins) (bin_range; bin 0 for a NaN or negative f), which
+  // exceeds `bin` exactly when f >= bin + 1 (that is below bins).
+  bool beyond(const F4& c, int axis, int bin) const { return (c[axis] - lo[axis]) * scale[axis] >= float(bin + 1); }
 };
 
 // A split: primitives whose centroid falls in bins [0, bin] along axis go left (axis -1: none).
@@ -486,7 +485,7 @@ class Builder {
     if (depth & 1) std::copy(index_[1].data() + first, index_[1].data() + first + count, index_[0].data() + first);
   }
   // How many of bins go left of plane (bins [0, plane.bin] on its axis): the partition's
-  // own count, as the partition bins each primitive by the same expressions.
+  // own count, as its test (Grid::beyond) reads the binning's f.
   static uint32_t left_of(const Bins& bins, const Plane& plane) {
     uint32_t n = 0;
     for (int b = 0; b <= plane.bin; ++b) n += bins.count[plane.axis][b];
@@ -555,8 +554,9 @@ class Builder {
     }
   }
 
-  // A primitive's bins along all three axes from one vector expression (Grid::bin()'s
-  // operations and clamps, lane by lane).
+  // A primitive's bins along all three axes from one vector expression: f = (c - lo) *
+  // scale lane by lane, clamped to [0, bins) (NaN to 0) before its conversion (a float past
+  // INT_MAX has no int). Grid::beyond() reads the same f.
   void bin_range(Bins& bins, const Grid& grid, uint32_t first, uint32_t end, std::size_t depth) const {
     const F4 lo4 = f4(grid.lo), scale4 = f4(grid.scale);
     const Bounds* const boxes = box_at(depth);
@@ -673,7 +673,7 @@ class Builder {
         for (uint32_t i = p.begin; i < p.end; ++i) {
           const Bounds q = from_box[i];
           const F4 c = centroid(q);
-          if (grid[p.range].bin(c, pl.axis) > pl.bin) {
+          if (grid[p.range].beyond(c, pl.axis, pl.bin)) {
             to[r] = from[i], to_box[r++] = q;
             box[1].grow(q), cbox[1].grow(c);
           } else {
@@ -790,7 +790,7 @@ class Builder {
       const uint32_t p = from[i];
       const Bounds q = from_box[i];
       const F4 c = centroid(q);
-      if (grid.bin(c, plane.axis) > plane.bin) {
+      if (grid.beyond(c, plane.axis, plane.bin)) {
         to[r] = p, to_box[r++] = q;
         rbox.grow(q), rcbox.grow(c);
       } else {
