@@ -34,8 +34,10 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <functional>
 #include <limits>
 #include <map>
+#include <memory>
 #include <string>
 
 namespace gyro::bench {
@@ -245,7 +247,8 @@ const char* error_metric(const RayCase& c, bool verdicts) {
 }
 
 // Prints a line; returns its throughput (Mrays/s).
-double emit(const RayCase& c, const Line& l, const Score& s, const char* per, double gyro_mrays = 0) {
+double emit(const RayCase& c, const Line& l, const Score& s, const char* per, double gyro_mrays = 0,
+            const std::vector<std::pair<const char*, double>>& extra = {}) {
   const double mrays = double(s.rays) / l.ms / 1e3;
   if (s.disagree)
     std::printf("# %s %s %s: disagreeing%s\n", c.workload, l.library, l.method.c_str(), s.examples.c_str());
@@ -271,6 +274,7 @@ double emit(const RayCase& c, const Line& l, const Score& s, const char* per, do
       .integer("reps", l.reps);
   if (l.bytes) j.integer("bytes", int64_t(l.bytes)).num(per, double(l.bytes) / double(l.primitives), 4);
   if (gyro_mrays > 0) j.num("ratio_vs", mrays / gyro_mrays, 4);
+  for (const auto& [key, value] : extra) j.num(key, value, 5);
   j.print();
   return mrays;
 }
@@ -288,6 +292,17 @@ RaysView view_with_tmax(const RaySet& r, const std::vector<float>& tmax) {
 using GyroRates = std::map<uint32_t, double>;  // Mrays/s at the best level run, by threads
 struct GyroRuns {
   GyroRates closest, any;
+  // gyro's closest hits at its best level on one thread, on the tree the lines timed, for a
+  // peer to alternate its reps with: the ratio then comes from the same minutes of this
+  // noisy machine (a peer timed minutes after gyro's lines ran in another phase of it:
+  // Bullet's R2 figure has moved 0.14-0.39 Mrays/s between runs, gyro's 4.0-5.0).
+  std::function<void(const RaySet& rays, const std::vector<float>& tmax)> trace1;
+};
+
+// Sets gyro's best level and one thread for a paired trace, and back afterwards.
+struct OneThreadBest {
+  OneThreadBest() { set_simd_level(detected_simd_level()), set_thread_count(1); }
+  ~OneThreadBest() { set_simd_level(SimdLevel::automatic), set_thread_count(0); }
 };
 
 // These workloads compare libraries, so by default gyro runs at its best level only
@@ -358,6 +373,12 @@ GyroRuns run_gyro_mesh(const Options& o, const MeshData& mesh, const RayCase& c)
   }
   set_simd_level(SimdLevel::automatic);
   set_thread_count(0);
+  const auto kept = std::make_shared<TriangleMesh>(std::move(tm));
+  rates.trace1 = [kept, out = testing::HitSet(0)](const RaySet& rays, const std::vector<float>& tmax) mutable {
+    if (out.t.size() != rays.size()) out = testing::HitSet(rays.size());
+    const OneThreadBest one;
+    raycast_closest(*kept, view_with_tmax(rays, tmax), rays.size(), out.out(false));
+  };
   return rates;
 }
 
@@ -461,6 +482,19 @@ GyroRuns run_gyro_spheres_scene(const Options& o, const testing::SphereSet& sphe
         if (bvh) rates.any[threads] = any_rate;
       }
     }
+    if (bvh) {
+      struct Hits {
+        std::vector<float> t;
+        std::vector<ModelId> model;
+        std::vector<int32_t> prim;
+      };
+      const auto kept = std::make_shared<Scene>(std::move(scene));
+      rates.trace1 = [kept, h = Hits{}](const RaySet& rays, const std::vector<float>& tmax) mutable {
+        h.t.resize(rays.size()), h.model.resize(rays.size()), h.prim.resize(rays.size());
+        const OneThreadBest one;
+        raycast_closest(*kept, view_with_tmax(rays, tmax), rays.size(), {h.t.data(), h.model.data(), h.prim.data()});
+      };
+    }
   }
   set_simd_level(SimdLevel::automatic);
   set_thread_count(0);
@@ -540,14 +574,32 @@ void run_bullet(const Options& o, Geometry g, const MeshData* mesh, const testin
   if (!world) return;
   RayResults r;
   const int reps = std::max(1, std::min(o.reps, 3));
-  const double ms = median_ms(reps, [&] { world->trace(sub.rays, n, sub.tmax, r); });
+  // Bullet's reps, each after one of gyro's on the same rays (both warmed up first).
+  const std::vector<float> tmax = tmax_column(sub, n);
+  std::vector<double> ms_all, paired;
+  for (int rep = 0; rep <= reps; ++rep) {
+    if (runs.trace1) {
+      const auto a = std::chrono::steady_clock::now();
+      runs.trace1(sub.rays, tmax);
+      if (rep > 0) paired.push_back(ms_since(a));
+    }
+    const auto a = std::chrono::steady_clock::now();
+    world->trace(sub.rays, n, sub.tmax, r);
+    if (rep > 0) ms_all.push_back(ms_since(a));
+  }
+  const double ms = median(std::move(ms_all));
+  std::vector<std::pair<const char*, double>> extra;
+  if (!paired.empty()) {
+    const double gyro_ms = median(std::move(paired));
+    extra = {{"gyro_paired_ms", gyro_ms}, {"gyro_paired_speedup", ms / gyro_ms}};
+  }
   const auto it = gyro.find(1);
   const char* method = g == Geometry::triangles ? "rayTest btBvhTriangleMeshShape" : "rayTest btSphereShape";
   emit(sub,
        {"bullet", method, "scalar", 1, b.ms, b.bytes,
         g == Geometry::triangles ? mesh->triangle_count() : spheres->size(), ms, reps},
        score(r.t.data(), n, sub.tmax, sub.ref), g == Geometry::triangles ? "bytes_per_triangle" : "bytes_per_sphere",
-       it == gyro.end() ? 0.0 : it->second);
+       it == gyro.end() ? 0.0 : it->second, extra);
   if (ts.size() > 1) std::printf("# Bullet: 1 thread only (rayTest is not thread-safe)\n");
 }
 
