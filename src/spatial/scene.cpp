@@ -179,44 +179,45 @@ inline F4 lanes(const vec3& v) {
 inline void store3(vec3& v, F4 r) { std::memcpy(static_cast<void*>(&v), &r, sizeof v); }
 
 
-// Writes p as the placement of a model with def d at world transform w. A sphere (most of a
-// moving scene's models, often) writes only its own fields, in place: the others hold what
+// A sphere's placement (place() below): a sphere (most of a moving scene's models, often)
+// writes only its own fields, in place: the others hold what
 // Placed{} gave them, since a slot keeps its shape until compute_world() starts every slot
 // afresh (a remove, which may move another model into the slot, places everything). Building
 // a whole Placed and copying it was most of an all-moved frame's placing (R1M: 201
 // instructions a sphere).
-void place(Placed& p, const ModelDef& d, const ModelTransform& w, uint32_t index) {
-  if (d.shape == ModelShape::sphere) {
-    if (p.shape != ModelShape::sphere) p = Placed{};
-    p.index = index;
-    p.world = w;
-    p.mesh = d.mesh.get();
-    const float r = d.radius * w.scale;
-    p.set_sphere({w.position, r});
-    // padded_bounds(position, {r, r, r}) written out: its max_abs3 of three equal values is
-    // |r|, and max_abs3 is std::max's rule (the first of the largest), here without a list.
-    const vec3& c = w.position;
-    float m = std::abs(c.x);
-    if (m < std::abs(c.y)) m = std::abs(c.y);
-    if (m < std::abs(c.z)) m = std::abs(c.z);
-    const float pad = kBoxPad * (m + std::abs(r)) + kTinyPad;
-    // The bounds and Corners' values of them in lanes x, y, z (and a fourth, from a zero
-    // centre, never stored): the scalar expressions lane by lane, so the same bits, in fewer
-    // instructions (R1M, every sphere moved: place() 134 -> 100 a sphere).
-    const F4 c4 = lanes(c), r4 = F4{} + r, pad4 = F4{} + pad;
-    const F4 lo = c4 - r4 - pad4, hi = c4 + r4 + pad4;
-    const F4 centre = (lo + hi) * 0.5f, half = (hi - lo) * 0.5f;
-    store3(p.bounds.center, centre);
-    store3(p.bounds.half_extents, half);
-    // The other shapes' test, of fewer values: finite corners imply a finite centre and
-    // half extent of the bounds (else one corner is inf or NaN), so a finite position, r and
-    // pad, and with the radius finite (check_shape) a finite scale. The fourth lane is not
-    // finite only when r or pad is not, and then neither is any other.
-    const quat& q = w.rotation;
-    const F4 q4 = {q.x, q.y, q.z, q.w};
-    p.placed = none4(not_finite4(centre - half) | not_finite4(centre + half) | not_finite4(q4));
-    return;
-  }
+[[gnu::always_inline]] inline void place_sphere(Placed& p, const ModelDef& d, const ModelTransform& w, uint32_t index) {
+  if (p.shape != ModelShape::sphere) p = Placed{};
+  p.index = index;
+  p.world = w;
+  p.mesh = d.mesh.get();
+  const float r = d.radius * w.scale;
+  p.set_sphere({w.position, r});
+  // padded_bounds(position, {r, r, r}) written out: its max_abs3 of three equal values is
+  // |r|, and max_abs3 is std::max's rule (the first of the largest), here without a list.
+  const vec3& c = w.position;
+  float m = std::abs(c.x);
+  if (m < std::abs(c.y)) m = std::abs(c.y);
+  if (m < std::abs(c.z)) m = std::abs(c.z);
+  const float pad = kBoxPad * (m + std::abs(r)) + kTinyPad;
+  // The bounds and Corners' values of them in lanes x, y, z (and a fourth, from a zero
+  // centre, never stored): the scalar expressions lane by lane, so the same bits, in fewer
+  // instructions (R1M, every sphere moved: place() 134 -> 100 a sphere).
+  const F4 c4 = lanes(c), r4 = F4{} + r, pad4 = F4{} + pad;
+  const F4 lo = c4 - r4 - pad4, hi = c4 + r4 + pad4;
+  const F4 centre = (lo + hi) * 0.5f, half = (hi - lo) * 0.5f;
+  store3(p.bounds.center, centre);
+  store3(p.bounds.half_extents, half);
+  // The other shapes' test, of fewer values: finite corners imply a finite centre and
+  // half extent of the bounds (else one corner is inf or NaN), so a finite position, r and
+  // pad, and with the radius finite (check_shape) a finite scale. The fourth lane is not
+  // finite only when r or pad is not, and then neither is any other.
+  const quat& q = w.rotation;
+  const F4 q4 = {q.x, q.y, q.z, q.w};
+  p.placed = none4(not_finite4(centre - half) | not_finite4(centre + half) | not_finite4(q4));
+}
+
+// The other shapes (place()'s).
+[[gnu::noinline]] void place_other(Placed& p, const ModelDef& d, const ModelTransform& w, uint32_t index) {
   p = Placed{};
   p.shape = d.shape;
   p.index = index;
@@ -254,6 +255,14 @@ void place(Placed& p, const ModelDef& d, const ModelTransform& w, uint32_t index
             gyro::is_finite(aabb_max(p.bounds)) && gyro::is_finite(p.bounds.half_extents);
   for (float v : q) ok = ok && detail::is_finite(v);
   p.placed = ok;
+}
+
+// Writes p as the placement of a model with def d at world transform w: a sphere's inline in
+// the loops that place every model (R1M, every sphere moved: 10 instructions a sphere fewer
+// than a call), the other shapes' out of line.
+inline void place(Placed& p, const ModelDef& d, const ModelTransform& w, uint32_t index) {
+  if (d.shape == ModelShape::sphere) place_sphere(p, d, w, index);
+  else place_other(p, d, w, index);
 }
 
 // An AABB query region [lo, hi] widened like the models' boxes.
