@@ -472,7 +472,8 @@ class Builder {
   // move with their indices, so binning and partitions stream them from memory instead of
   // gathering them by index (with the centroids, the gathers were R2's build's cache
   // misses). One buffer with a scratch copy back after each partition (the right side of a
-  // task's, everything at the top) moved about 240 MB more for R2.
+  // task's, everything at the top) cost R2's build 114 M more data reads and 106 M more
+  // writes (callgrind: 384 and 307 M against 270 and 201 M).
   DefaultInitVector<uint32_t> index_[2];
   DefaultInitVector<Bounds> box_[2];
   uint32_t leaf_size_;   // the most primitives a leaf block holds: a power of two,
