@@ -558,15 +558,18 @@ class Builder {
   // A primitive's bins along all three axes from one vector expression: f = (c - lo) *
   // scale lane by lane, clamped to [0, bins) (NaN to 0) before its conversion (a float past
   // INT_MAX has no int). Grid::beyond() reads the same f.
+  static I4 bins_of(const Bounds& r, const Grid& grid, const F4& lo4, const F4& scale4) {
+    F4 f = (centroid(r) - lo4) * scale4;
+    f = f >= 0.0f ? f : F4{};  // NaN too
+    f = f < float(grid.bins) ? f : F4{} + float(grid.bins - 1);
+    return __builtin_convertvector(f, I4);
+  }
   void bin_range(Bins& bins, const Grid& grid, uint32_t first, uint32_t end, std::size_t depth) const {
     const F4 lo4 = f4(grid.lo), scale4 = f4(grid.scale);
     const Bounds* const boxes = box_at(depth);
     for (uint32_t i = first; i < end; ++i) {
       const Bounds& r = boxes[i];
-      F4 f = (centroid(r) - lo4) * scale4;
-      f = f >= 0.0f ? f : F4{};  // NaN too
-      f = f < float(grid.bins) ? f : F4{} + float(grid.bins - 1);
-      const I4 b = __builtin_convertvector(f, I4);
+      const I4 b = bins_of(r, grid, lo4, scale4);
       for (int axis = 0; axis < 3; ++axis) {
         bins.box[axis][b[axis]].grow(r);
         ++bins.count[axis][b[axis]];
@@ -768,6 +771,34 @@ class Builder {
     });
   }
 
+  // sah_split() of two primitives without bins (a box BVH, one item to a leaf, has one such
+  // node for about every three items, and clearing and sweeping bins for them was a tenth of
+  // a scene's build). What the bins would decide: on every axis where the two fall in
+  // different bins (the binning's own expression), those bins are the only used ones and the
+  // plane between them costs area(a) + area(b) (the sum commutes, so the same bits), so the
+  // strict < of best_plane keeps the first such axis; the stable partition puts the one in
+  // the lower bin left. No such axis: no plane, as best_plane finds none.
+  uint32_t split_pair(uint32_t first, std::size_t depth, const Grid& grid, Box (&sides)[2][2]) {
+    const uint32_t* const from = index_at(depth) + first;
+    const Bounds* const from_box = box_at(depth) + first;
+    const F4 lo4 = f4(grid.lo), scale4 = f4(grid.scale);
+    const I4 b0 = bins_of(from_box[0], grid, lo4, scale4), b1 = bins_of(from_box[1], grid, lo4, scale4);
+    int axis = 0;
+    while (axis < 3 && (grid.scale[axis] == 0.0f || b0[axis] == b1[axis])) ++axis;
+    if (axis == 3) return 0;
+    const int l = b1[axis] < b0[axis] ? 1 : 0;  // the first of the two, unless the second's bin is lower
+    uint32_t* const to = index_at(depth + 1) + first;
+    Bounds* const to_box = box_at(depth + 1) + first;
+    to[0] = from[l], to_box[0] = from_box[l];
+    to[1] = from[1 - l], to_box[1] = from_box[1 - l];
+    for (int side = 0; side < 2; ++side) {
+      Box box, cbox;
+      box.grow(to_box[side]), cbox.grow(centroid(to_box[side]));
+      sides[side][0] = box, sides[side][1] = cbox;
+    }
+    return 1;
+  }
+
   // Binned SAH for a task's node at `depth`: the best plane, and the stable partition into
   // the other buffer (each side where its count from the bins puts it), gathering both
   // sides' boxes and centroid boxes into `sides` (in place of a pass over each child's
@@ -775,6 +806,7 @@ class Builder {
   // nothing partitioned).
   uint32_t sah_split(uint32_t first, uint32_t count, std::size_t depth, const Box& cbox, Box (&sides)[2][2]) {
     const Grid grid(cbox, count);
+    if (count == 2) return split_pair(first, depth, grid, sides);
     Bins bins(grid.bins);
     bin_range(bins, grid, first, first + count, depth);
     const Plane plane = best_plane(bins, count, grid, leaf_shift_);
