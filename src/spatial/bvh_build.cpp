@@ -28,6 +28,7 @@
 // BVH over arbitrary boxes (leaves hold item indices; the scene's top level). Only the
 // primitive boxes and the leaf writer differ, so both get the same tree for the same boxes.
 #include "spatial/bvh.hpp"
+#include "spatial/bvh_orders.hpp"
 
 #include "core/default_init.hpp"
 #include "core/parallel.hpp"
@@ -400,10 +401,11 @@ class Builder {
     out.nodes.resize(node_count);
     out.leaves.resize(leaf_count);
     std::vector<double> node_area(node_count), leaf_area(leaf_count);  // for the SAH cost
+    bvh_orders_set_fn* const set_orders_at_level = GYRO_DISPATCH(bvh_orders_set);  // the bytes of set_orders()
     const auto write_node = [&](const Wide& w, uint32_t at, const uint32_t* codes) {
       Node node = empty_node<Node>();
       for (uint32_t j = 0; j < w.n; ++j) set_child(node, int(j), nodes_[w.kid[j]].box, codes[j]);
-      set_orders(node);
+      set_orders_at_level(node);
       out.nodes[at] = node;
       node_area[at] = nodes_[w.self].box.half_area();
     };

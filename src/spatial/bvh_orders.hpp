@@ -22,4 +22,10 @@ namespace gyro {
 using bvh_orders_refresh_fn = void(detail::BvhNode8* nodes, const uint32_t* which, std::size_t count);
 GYRO_KERNEL(bvh_orders_refresh, bvh_orders_refresh_fn)
 
+/// Writes node.order as detail::set_child_orders() does, without checking what it held: the
+/// build's (the AVX levels sort by ranks in SIMD compares, a quarter of the portable sort's
+/// instructions).
+using bvh_orders_set_fn = void(detail::BvhNode8& node);
+GYRO_KERNEL(bvh_orders_set, bvh_orders_set_fn)
+
 }  // namespace gyro

@@ -330,11 +330,18 @@ inline void refresh(BvhNode8& n) {
 
 #endif
 
+// Every octant pair sorted, whatever the node held (the build's nodes).
+inline void set(BvhNode8& n) {
+  const Slots s = slots_in(n);
+  sort_orders(n, s, Keys(n), 15u);
+}
+
 #else  // the scalar and SSE2 levels: the portable check and sort
 
 inline void refresh(BvhNode8& n) {
   if (!detail::child_orders_hold(n)) detail::set_child_orders(n);
 }
+inline void set(BvhNode8& n) { detail::set_child_orders(n); }
 
 #endif
 
@@ -343,5 +350,7 @@ inline void refresh(BvhNode8& n) {
 void bvh_orders_refresh(BvhNode8* nodes, const uint32_t* which, std::size_t count) {
   for (std::size_t i = 0; i < count; ++i) refresh(nodes[which[i]]);
 }
+
+void bvh_orders_set(BvhNode8& node) { set(node); }
 
 }  // namespace gyro::GYRO_ARCH_NS

@@ -236,6 +236,9 @@ TEST(Bvh, CollapseFillsTheNodes) {
 // depth 4); the hashes pin the tree itself too (those of the least-cost collapse); the
 // whole bytes (with the child orders) must match across thread counts, and
 // the orders must be what BvhNode8 says.
+// The whole bytes of SameBytesAtEveryThreadCount's three trees.
+constexpr uint64_t kWholeBytes[3] = {18196415548053710919ull, 3277331604974551807ull, 1123117721935374864ull};
+
 TEST(Bvh, SameBytesAtEveryThreadCount) {
   const MeshData mesh = random_mesh(70000, 5, false), clustered = random_mesh(40000, 6, true);
   const std::vector<detail::BvhBox> boxes = random_boxes();
@@ -259,10 +262,27 @@ TEST(Bvh, SameBytesAtEveryThreadCount) {
   }
   // Every byte is written (the nodes and leaf blocks are not zeroed before the fill): the
   // whole bytes are pinned too.
-  EXPECT_EQ(whole[0], 18196415548053710919ull);
-  EXPECT_EQ(whole[1], 3277331604974551807ull);
-  EXPECT_EQ(whole[2], 1123117721935374864ull);
+  EXPECT_EQ(whole[0], kWholeBytes[0]);
+  EXPECT_EQ(whole[1], kWholeBytes[1]);
+  EXPECT_EQ(whole[2], kWholeBytes[2]);
   set_thread_count(saved);
+}
+
+// The build writes its nodes' octant orders at the SIMD level (bvh_orders.hpp): every level
+// gives the same bytes.
+TEST(Bvh, SameBytesAtEverySimdLevel) {
+  const MeshData mesh = random_mesh(70000, 5, false), clustered = random_mesh(40000, 6, true);
+  const std::vector<detail::BvhBox> boxes = random_boxes();
+  for (uint32_t v = 1; v <= 5; ++v) {
+    if (!simd_level_available(SimdLevel(v))) continue;
+    ASSERT_EQ(set_simd_level(SimdLevel(v)), Status::ok);
+    const detail::Bvh8 a = detail::build_bvh8(mesh), b = detail::build_bvh8(clustered);
+    const detail::BoxBvh8 c = detail::build_box_bvh8(boxes.data(), boxes.size());
+    EXPECT_EQ(bytes_hash(a), kWholeBytes[0]) << simd_level_name(SimdLevel(v));
+    EXPECT_EQ(bytes_hash(b), kWholeBytes[1]) << simd_level_name(SimdLevel(v));
+    EXPECT_EQ(bytes_hash(c), kWholeBytes[2]) << simd_level_name(SimdLevel(v));
+  }
+  set_simd_level(SimdLevel::automatic);
 }
 
 }  // namespace
