@@ -97,6 +97,8 @@ void BvhRefit::plan_tasks(const BoxBvh8& bvh) {
     for (const uint32_t root : task_root_) task_end_.push_back(end[root]);
   }
   parts_.assign(task_root_.size() + 1, Part{});
+  for (std::size_t t = 0; t < task_root_.size(); ++t) parts_[t].changed.resize(task_end_[t] - task_root_[t]);
+  parts_.back().changed.resize(top_.size());
 }
 
 void BvhRefit::mark_item(uint32_t item) {

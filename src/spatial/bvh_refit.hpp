@@ -62,14 +62,14 @@ class BvhRefit {
     // node's from its own bounds: refreshed by the thread that just wrote those bounds, while
     // they are in its cache.
     bvh_orders_refresh_fn* const refresh = GYRO_DISPATCH(bvh_orders_refresh);
-    for (Part& part : parts_) part.changed.clear(), part.revisit.clear(), part.ok = true;
+    for (Part& part : parts_) part.changed_count = 0, part.revisit.clear(), part.ok = true;
     const auto run_task = [&](std::size_t t) {
       const uint32_t root = task_root_[t];
       if (!node_mark_[root]) return;  // nor any node below it
       Part& part = parts_[t];
       for (uint32_t i = task_end_[t]; i-- > root;)
         if (node_mark_[i]) refit_node(bvh, i, box, store, part);
-      refresh(bvh.nodes.data(), part.changed.data(), part.changed.size());
+      refresh(bvh.nodes.data(), part.changed.data(), part.changed_count);
     };
     const std::size_t marked = all_marked_ ? bvh.nodes.size() : marked_nodes_.size();
     if (marked >= parallel_nodes_) {
@@ -82,7 +82,7 @@ class BvhRefit {
     Part& top = parts_.back();
     for (std::size_t k = top_.size(); k-- > 0;)
       if (node_mark_[top_[k]]) refit_node(bvh, top_[k], box, store, top);
-    refresh(bvh.nodes.data(), top.changed.data(), top.changed.size());
+    refresh(bvh.nodes.data(), top.changed.data(), top.changed_count);
     // The parts in a fixed order (the tasks', then the top's): the same list at any thread count.
     revisit_.clear();
     for (const Part& part : parts_) {
@@ -131,7 +131,10 @@ class BvhRefit {
   // What each task (and, last, the top) changed and was asked to revisit; and whether its
   // numbering held.
   struct alignas(64) Part {  // a cache line each: tasks on different threads write their own
+    // changed holds a place for each of the part's nodes (link() sizes it), each refit at most
+    // once: a store, not a push_back's call (24 instructions a changed node).
     std::vector<uint32_t> changed, revisit;
+    std::size_t changed_count = 0;
     bool ok = true;
   };
   std::vector<Part> parts_;
@@ -178,7 +181,7 @@ class BvhRefit {
     const bool changed = store(n, rows, own.lo, own.hi);  // the bits compared, as the build's
     node_changed_[i] = changed;
     if (!changed) return;
-    part.changed.push_back(i);
+    part.changed[part.changed_count++] = i;
     node_box_[i] = own;
     node_area_[i] = own.half_area();
     if (i == 0) bvh.bounds = aabb_from_min_max({own.lo[0], own.lo[1], own.lo[2]}, {own.hi[0], own.hi[1], own.hi[2]});
