@@ -179,12 +179,11 @@ inline F4 lanes(const vec3& v) {
 inline void store3(vec3& v, F4 r) { std::memcpy(static_cast<void*>(&v), &r, sizeof v); }
 
 
-// A sphere's placement (place() below): a sphere (most of a moving scene's models, often)
-// writes only its own fields, in place: the others hold what
-// Placed{} gave them, since a slot keeps its shape until compute_world() starts every slot
-// afresh (a remove, which may move another model into the slot, places everything). Building
-// a whole Placed and copying it was most of an all-moved frame's placing (R1M: 201
-// instructions a sphere).
+// A sphere's placement (place() below). A sphere (most of a moving scene's models, often)
+// writes only its own fields, in place: the others hold what Placed{} gave them, since a
+// slot keeps its shape until compute_world() starts every slot afresh (a remove, which may
+// move another model into the slot, places everything). Building a whole Placed and copying
+// it was most of an all-moved frame's placing (R1M: 201 instructions a sphere).
 [[gnu::always_inline]] inline void place_sphere(Placed& p, const ModelDef& d, const ModelTransform& w, uint32_t index) {
   if (p.shape != ModelShape::sphere) p = Placed{};
   p.index = index;
