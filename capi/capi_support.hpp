@@ -11,6 +11,7 @@
 #include "gyro/batch_raycast.hpp"
 
 #include <bit>
+#include <cstddef>
 #include <new>
 
 namespace gyro::capi {
@@ -51,7 +52,12 @@ inline Status check_bool(uint32_t v, const char* name) {
 
 // The C views have exactly the C++ views' layout (asserted below), so they convert by copy.
 template <class To, class From> To view_of(const From& f) { return std::bit_cast<To>(f); }
-static_assert(sizeof(gyro_ray_soa) == sizeof(RaysView) && sizeof(gyro_hit_soa) == sizeof(HitsOut));
+// RaysView adds the per-ray masks after the C view's pointers (the scenes' masked calls
+// take them separately, so gyro_ray_soa kept its layout): here every ray sees every layer.
+template <> inline RaysView view_of<RaysView>(const gyro_ray_soa& r) {
+  return {r.ox, r.oy, r.oz, r.dx, r.dy, r.dz, r.tmin, r.tmax, nullptr};
+}
+static_assert(sizeof(gyro_ray_soa) == offsetof(RaysView, mask) && sizeof(gyro_hit_soa) == sizeof(HitsOut));
 static_assert(sizeof(gyro_sphere_soa) == sizeof(SpheresView) && sizeof(gyro_aabb_soa) == sizeof(AabbsView) &&
               sizeof(gyro_obb_soa) == sizeof(ObbsView) && sizeof(gyro_plane_soa) == sizeof(PlanesView) &&
               sizeof(gyro_triangle_soa) == sizeof(TrianglesView));

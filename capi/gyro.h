@@ -34,7 +34,7 @@ extern "C" {
 
 /** ABI version this header describes: (major << 16) | minor. A library with the same
  *  major and a minor >= the header's is compatible. */
-#define GYRO_ABI_VERSION ((1u << 16) | 8u)
+#define GYRO_ABI_VERSION ((1u << 16) | 9u)
 
 /** The ABI version of the linked library; compare with GYRO_ABI_VERSION. */
 GYRO_API uint32_t gyro_abi_version(void);
@@ -418,6 +418,12 @@ GYRO_API gyro_status gyro_scene_remove_model(gyro_scene* scene, gyro_model_id id
 GYRO_API gyro_status gyro_scene_set_transform(gyro_scene* scene, gyro_model_id id, const gyro_transform* local);
 /** A null parent detaches the model; its local transform is kept. */
 GYRO_API gyro_status gyro_scene_set_parent(gyro_scene* scene, gyro_model_id id, gyro_model_id parent);
+/** Sets the ray layers a model is in (ABI 1.9; every model starts in all 32, 0xFFFFFFFF):
+ *  a masked raycast's ray passes through a model whose mask shares no bit with its own. 0
+ *  hides the model from every ray; the overlap and frustum queries ignore masks. Not a
+ *  structural change (the tree is neither rebuilt nor refit). STALE_ID or NULL_ARGUMENT
+ *  change nothing. */
+GYRO_API gyro_status gyro_scene_set_ray_mask(gyro_scene* scene, gyro_model_id id, uint32_t ray_mask);
 GYRO_API int32_t gyro_scene_model_count(const gyro_scene* scene);
 
 /** Per-ray scene results: t and model required, the rest optional (NULL to skip; normal
@@ -442,6 +448,16 @@ GYRO_API gyro_status gyro_scene_raycast_closest(const gyro_scene* scene, const g
 /** Any hit (occlusion, line of sight). */
 GYRO_API gyro_status gyro_scene_raycast_any(const gyro_scene* scene, const gyro_ray_soa* rays, int32_t ray_count,
                                             const gyro_scene_hit_soa* hits);
+/** gyro_scene_raycast_closest with ray layers (ABI 1.9): ray i sees only the models whose
+ *  ray mask (gyro_scene_set_ray_mask) shares a bit with masks[i]. masks may be NULL: every
+ *  ray sees every layer, as gyro_scene_raycast_closest. */
+GYRO_API gyro_status gyro_scene_raycast_closest_masked(const gyro_scene* scene, const gyro_ray_soa* rays,
+                                                       const uint32_t* masks, int32_t ray_count,
+                                                       const gyro_scene_hit_soa* hits);
+/** gyro_scene_raycast_any with ray layers (ABI 1.9), as gyro_scene_raycast_closest_masked. */
+GYRO_API gyro_status gyro_scene_raycast_any_masked(const gyro_scene* scene, const gyro_ray_soa* rays,
+                                                   const uint32_t* masks, int32_t ray_count,
+                                                   const gyro_scene_hit_soa* hits);
 
 /** Models overlapping shape 0 of `shape` (a sphere, AABB or OBB), ascending ids. The first
  *  min(*count, capacity) are written to out; *count gets how many there are. */

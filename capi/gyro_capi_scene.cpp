@@ -63,8 +63,8 @@ Status model_def_of(const gyro_model_def& d, gyro::ModelDef& out) {
   return Status::ok;
 }
 
-Status scene_raycast(const gyro_scene* scene, const gyro_ray_soa* rays, int32_t n, const gyro_scene_hit_soa* hits,
-                     bool any) {
+Status scene_raycast(const gyro_scene* scene, const gyro_ray_soa* rays, const uint32_t* masks, int32_t n,
+                     const gyro_scene_hit_soa* hits, bool any) {
   GYRO_TRY(require(scene, "scene"));
   GYRO_TRY(require(rays, "rays"));
   GYRO_TRY(require(hits, "hits"));
@@ -72,7 +72,8 @@ Status scene_raycast(const gyro_scene* scene, const gyro_ray_soa* rays, int32_t 
   gyro::SceneHitsOut h;
   h.t = hits->t, h.model = reinterpret_cast<gyro::ModelId*>(hits->model), h.primitive = hits->primitive;
   h.nx = hits->nx, h.ny = hits->ny, h.nz = hits->nz, h.u = hits->u, h.v = hits->v;
-  const auto r = view_of<gyro::RaysView>(*rays);
+  gyro::RaysView r = view_of<gyro::RaysView>(*rays);
+  r.mask = masks;
   return any ? gyro::raycast_any(scene->scene, r, std::size_t(n), h)
              : gyro::raycast_closest(scene->scene, r, std::size_t(n), h);
 }
@@ -181,18 +182,37 @@ GYRO_API gyro_status gyro_scene_set_parent(gyro_scene* scene, gyro_model_id id, 
   });
 }
 
+GYRO_API gyro_status gyro_scene_set_ray_mask(gyro_scene* scene, gyro_model_id id, uint32_t ray_mask) {
+  return guarded([&]() -> Status {
+    GYRO_TRY(require(scene, "scene"));
+    return scene->scene.set_ray_mask(id_of(id), ray_mask);
+  });
+}
+
 GYRO_API int32_t gyro_scene_model_count(const gyro_scene* scene) {
   return scene ? int32_t(scene->scene.model_count()) : 0;
 }
 
 GYRO_API gyro_status gyro_scene_raycast_closest(const gyro_scene* scene, const gyro_ray_soa* rays, int32_t ray_count,
                                                 const gyro_scene_hit_soa* hits) {
-  return guarded([&] { return scene_raycast(scene, rays, ray_count, hits, false); });
+  return guarded([&] { return scene_raycast(scene, rays, nullptr, ray_count, hits, false); });
 }
 
 GYRO_API gyro_status gyro_scene_raycast_any(const gyro_scene* scene, const gyro_ray_soa* rays, int32_t ray_count,
                                             const gyro_scene_hit_soa* hits) {
-  return guarded([&] { return scene_raycast(scene, rays, ray_count, hits, true); });
+  return guarded([&] { return scene_raycast(scene, rays, nullptr, ray_count, hits, true); });
+}
+
+GYRO_API gyro_status gyro_scene_raycast_closest_masked(const gyro_scene* scene, const gyro_ray_soa* rays,
+                                                       const uint32_t* masks, int32_t ray_count,
+                                                       const gyro_scene_hit_soa* hits) {
+  return guarded([&] { return scene_raycast(scene, rays, masks, ray_count, hits, false); });
+}
+
+GYRO_API gyro_status gyro_scene_raycast_any_masked(const gyro_scene* scene, const gyro_ray_soa* rays,
+                                                   const uint32_t* masks, int32_t ray_count,
+                                                   const gyro_scene_hit_soa* hits) {
+  return guarded([&] { return scene_raycast(scene, rays, masks, ray_count, hits, true); });
 }
 
 GYRO_API gyro_status gyro_scene_query(const gyro_scene* scene, const gyro_shape_soa* shape, gyro_model_id* out,

@@ -58,7 +58,7 @@ namespace Gyro.Native
     public static class Constants
     {
         /// <summary>The ABI this binding was written against: (major &lt;&lt; 16) | minor.</summary>
-        public const uint GYRO_ABI_VERSION = (1u << 16) | 8u;
+        public const uint GYRO_ABI_VERSION = (1u << 16) | 9u;
 
         public const uint GYRO_FEATURE_OPENMP = 1u << 0;
         public const uint GYRO_FEATURE_SIMD_SSE2 = 1u << 1;
@@ -965,9 +965,12 @@ namespace Gyro.Native
         [DllImport(Library, CallingConvention = Cdecl)] public static extern Status gyro_scene_remove_model(SceneHandle scene, ModelId id);
         [DllImport(Library, CallingConvention = Cdecl)] public static extern Status gyro_scene_set_transform(SceneHandle scene, ModelId id, Transform* local);
         [DllImport(Library, CallingConvention = Cdecl)] public static extern Status gyro_scene_set_parent(SceneHandle scene, ModelId id, ModelId parent);
+        [DllImport(Library, CallingConvention = Cdecl)] public static extern Status gyro_scene_set_ray_mask(SceneHandle scene, ModelId id, uint ray_mask);
         [DllImport(Library, CallingConvention = Cdecl)] public static extern int gyro_scene_model_count(SceneHandle scene);
         [DllImport(Library, CallingConvention = Cdecl)] public static extern Status gyro_scene_raycast_closest(SceneHandle scene, RaySoa* rays, int ray_count, SceneHitSoa* hits);
         [DllImport(Library, CallingConvention = Cdecl)] public static extern Status gyro_scene_raycast_any(SceneHandle scene, RaySoa* rays, int ray_count, SceneHitSoa* hits);
+        [DllImport(Library, CallingConvention = Cdecl)] public static extern Status gyro_scene_raycast_closest_masked(SceneHandle scene, RaySoa* rays, uint* masks, int ray_count, SceneHitSoa* hits);
+        [DllImport(Library, CallingConvention = Cdecl)] public static extern Status gyro_scene_raycast_any_masked(SceneHandle scene, RaySoa* rays, uint* masks, int ray_count, SceneHitSoa* hits);
         [DllImport(Library, CallingConvention = Cdecl)] public static extern Status gyro_scene_query(SceneHandle scene, ShapeSoa* shape, ModelId* @out, int capacity, int* count);
         [DllImport(Library, CallingConvention = Cdecl)] public static extern Status gyro_scene_query_frustum(SceneHandle scene, Frustum* frustum, ModelId* @out, int capacity, int* count);
         [DllImport(Library, CallingConvention = Cdecl)] public static extern Status gyro_scene_pick(SceneHandle scene, Camera* camera, float screen_x, float screen_y, float viewport_width, float viewport_height, SceneHit* @out);

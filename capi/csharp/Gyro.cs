@@ -561,18 +561,21 @@ namespace Gyro
         public void RemoveModel(ModelId id) { Check.Ok(N.gyro_scene_remove_model(Handle, id), "gyro_scene_remove_model"); }
         public void SetTransform(ModelId id, Transform local) { Check.Ok(N.gyro_scene_set_transform(Handle, id, &local), "gyro_scene_set_transform"); }
         public void SetParent(ModelId id, ModelId parent) { Check.Ok(N.gyro_scene_set_parent(Handle, id, parent), "gyro_scene_set_parent"); }
+        /// <summary>The ray layers the model is in (all 32 to start with): a masked ray passes through a model whose mask shares no bit with its own.</summary>
+        public void SetRayMask(ModelId id, uint rayMask) { Check.Ok(N.gyro_scene_set_ray_mask(Handle, id, rayMask), "gyro_scene_set_ray_mask"); }
         public int ModelCount => N.gyro_scene_model_count(Handle);
 
-        /// <summary>Closest hit of every ray (the brute-force answer over every model).</summary>
-        public void RaycastClosest(RayBatch rays, SceneHitBatch hits) { Cast(rays, hits, false); }
-        /// <summary>Any hit (occlusion, line of sight).</summary>
-        public void RaycastAny(RayBatch rays, SceneHitBatch hits) { Cast(rays, hits, true); }
+        /// <summary>Closest hit of every ray (the brute-force answer over every model). With masks, ray i sees only the models whose ray mask shares a bit with masks[i].</summary>
+        public void RaycastClosest(RayBatch rays, SceneHitBatch hits, uint[] masks = null) { Cast(rays, hits, false, masks); }
+        /// <summary>Any hit (occlusion, line of sight); masks as RaycastClosest.</summary>
+        public void RaycastAny(RayBatch rays, SceneHitBatch hits, uint[] masks = null) { Cast(rays, hits, true, masks); }
 
-        void Cast(RayBatch rays, SceneHitBatch hits, bool any)
+        void Cast(RayBatch rays, SceneHitBatch hits, bool any, uint[] masks)
         {
             Check.NotNull(rays, nameof(rays)); Check.NotNull(hits, nameof(hits));
             rays.CheckArrays();
             Check.Length(hits.Capacity, rays.Count, nameof(hits));
+            if (masks != null) Check.Length(masks.Length, rays.Count, nameof(masks));
             fixed (float* ox = rays.Ox, oy = rays.Oy, oz = rays.Oz, dx = rays.Dx, dy = rays.Dy, dz = rays.Dz, tmin = rays.Tmin, tmax = rays.Tmax)
             fixed (float* t = hits.T, nx = hits.Nx, ny = hits.Ny, nz = hits.Nz, u = hits.U, v = hits.V)
             fixed (ModelId* model = hits.Model)
@@ -581,8 +584,11 @@ namespace Gyro
                 RaySoa rs = Soa.Rays(ox, oy, oz, dx, dy, dz, tmin, tmax);
                 SceneHitSoa hs;
                 hs.T = t; hs.Model = model; hs.Primitive = prim; hs.Nx = nx; hs.Ny = ny; hs.Nz = nz; hs.U = u; hs.V = v;
-                if (any) Check.Ok(N.gyro_scene_raycast_any(Handle, &rs, rays.Count, &hs), "gyro_scene_raycast_any");
-                else Check.Ok(N.gyro_scene_raycast_closest(Handle, &rs, rays.Count, &hs), "gyro_scene_raycast_closest");
+                fixed (uint* m = masks)
+                {
+                    if (any) Check.Ok(N.gyro_scene_raycast_any_masked(Handle, &rs, m, rays.Count, &hs), "gyro_scene_raycast_any_masked");
+                    else Check.Ok(N.gyro_scene_raycast_closest_masked(Handle, &rs, m, rays.Count, &hs), "gyro_scene_raycast_closest_masked");
+                }
             }
         }
 

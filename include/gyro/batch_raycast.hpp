@@ -19,7 +19,13 @@
 
 namespace gyro {
 
-/// Rays. tmin and tmax may be null, meaning 0 and +infinity for every ray.
+/// Every ray layer: the default of a ray's mask and of a scene model's ray_mask.
+inline constexpr uint32_t kAllRayLayers = 0xFFFFFFFFu;
+
+/// Rays. tmin and tmax may be null, meaning 0 and +infinity for every ray. mask may be null,
+/// meaning kAllRayLayers for every ray: in a Scene, ray i sees only the models whose
+/// ModelDef::ray_mask shares a bit with mask[i] (Embree's ray and geometry masks). Queries
+/// over primitives without masks (shape arrays, a TriangleMesh) ignore it.
 struct RaysView {
   const float* ox = nullptr;
   const float* oy = nullptr;
@@ -29,6 +35,7 @@ struct RaysView {
   const float* dz = nullptr;
   const float* tmin = nullptr;
   const float* tmax = nullptr;
+  const uint32_t* mask = nullptr;
 };
 
 /// Per-ray results. primitive is the index hit, or -1 (then t is +infinity and the other

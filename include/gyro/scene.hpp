@@ -111,6 +111,10 @@ struct ModelDef {
   std::shared_ptr<const TriangleMesh> mesh;   ///< mesh: created (not empty); shared, never copied
   ModelTransform transform;                   ///< relative to the parent (the world for a root)
   ModelId parent;                             ///< null: a root
+  /// The ray layers the model is in: a ray whose mask (RaysView::mask) shares no bit with
+  /// it passes through. 0 hides the model from every ray; the overlap and frustum queries
+  /// ignore it. Any value is valid.
+  uint32_t ray_mask = kAllRayLayers;
 };
 
 /// A model as the scene holds it, with its world placement.
@@ -224,6 +228,9 @@ class Scene {
   /// model moves with its new parent. A parent that is the model or one of its descendants
   /// is invalid_argument.
   Status set_parent(ModelId id, ModelId parent);
+  /// Sets the model's ModelDef::ray_mask. Not a structural change: the next query rewrites
+  /// the masks the tree's leaves hold, and neither rebuilds nor refits the tree.
+  Status set_ray_mask(ModelId id, uint32_t ray_mask);
 
   /// True for a live id.
   bool contains(ModelId id) const;
@@ -258,14 +265,17 @@ struct SceneHit {
   float u = 0.0f, v = 0.0f;  ///< mesh models: barycentric weights of corners b and c
 };
 
-/// Closest hit with t in [tmin, tmax] (see the header comment). A ray the mesh queries call
+/// Closest hit with t in [tmin, tmax] among the models whose ray_mask shares a bit with
+/// `mask` (see the header comment). A ray the mesh queries call
 /// invalid (a NaN or infinite coordinate, a zero direction, tmin not finite or negative,
 /// tmax NaN or below tmin) hits nothing.
-SceneHit raycast(const Scene& scene, const Ray& ray, float tmin = 0.0f, float tmax = __builtin_inff());
+SceneHit raycast(const Scene& scene, const Ray& ray, float tmin = 0.0f, float tmax = __builtin_inff(),
+                 uint32_t mask = kAllRayLayers);
 /// Some hit with t in [tmin, tmax] (stops at the first found: planes first in id order,
 /// then the tree's traversal order); hit.hit exactly when raycast() hits. The model
 /// reported may differ between the acceleration modes, never between runs.
-SceneHit raycast_any(const Scene& scene, const Ray& ray, float tmin = 0.0f, float tmax = __builtin_inff());
+SceneHit raycast_any(const Scene& scene, const Ray& ray, float tmin = 0.0f, float tmax = __builtin_inff(),
+                     uint32_t mask = kAllRayLayers);
 
 /// Per-ray results of the batch raycasts: t and model are required, the rest optional
 /// (null to skip; the normal all three or none, u and v both or none). A miss writes

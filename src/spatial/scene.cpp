@@ -329,11 +329,13 @@ struct Scene::Impl {
   std::vector<detail::SceneLeaf> ray_leaves;  // bvh.leaves as the ray kernel reads them
   std::vector<detail::SceneBox> ray_boxes;    // their box models
   bool rays_large = false;                     // beyond kFetchBytes (RayPrefetch::automatic)
+  bool masks_changed = false;                  // a ray_mask set since the leaves were written
   Octree octree;
   SceneAccel built = SceneAccel::bvh;
   std::mutex mutex;
   std::atomic<bool> world_ready{true};
   std::atomic<bool> tree_ready{false};
+  bool tree_stale = true;  // the tree needs build_tree() (false while only masks changed)
   bool rebuild = true;      // a change other than transforms: the next build_tree() starts afresh
   double built_sah = 0.0;   // the last full BVH build's sah_cost, which a refit may not exceed by kSceneRefitCost
   std::size_t builds = 0, refits = 0;
@@ -364,6 +366,7 @@ struct Scene::Impl {
   void changed() {
     world_ready.store(false, std::memory_order_relaxed);
     tree_ready.store(false, std::memory_order_relaxed);
+    tree_stale = true;
   }
 
   uint32_t slot(ModelId id) const { return pool.slot(to_detail(id)); }
@@ -632,16 +635,16 @@ struct Scene::Impl {
     r.sphere[1] = sphere ? p->box.center.y : nan;
     r.sphere[2] = sphere ? p->box.center.z : nan;
     r.sphere[3] = sphere ? p->box.half_extents.x : nan;
-    r.exact = p && !sphere && p->shape != ModelShape::box ? 1u : 0u;
-    r.box_block = detail::kNoItem;
+    r.ray_mask = p ? defs[tree_slots[item]].ray_mask : 0u;
+    r.box_block = p && !sphere && p->shape != ModelShape::box ? detail::kExactLeaf : detail::kNoItem;
     if (p && p->shape == ModelShape::box) {
       const OBB& b = p->box;
       const mat3& o = b.orientation;
       const detail::SceneBox box{{b.center.x, b.center.y, b.center.z, b.half_extents.x, b.half_extents.y, b.half_extents.z,
                                   o.m[0][0], o.m[0][1], o.m[0][2], o.m[1][0], o.m[1][1], o.m[1][2], o.m[2][0], o.m[2][1],
                                   o.m[2][2]}};
-      r.box_block = block != detail::kNoItem ? block : uint32_t(ray_boxes.size());
-      if (block != detail::kNoItem) ray_boxes[block] = box;
+      r.box_block = detail::has_box_block(block) ? block : uint32_t(ray_boxes.size());
+      if (detail::has_box_block(block)) ray_boxes[block] = box;
       else ray_boxes.push_back(box);
     }
   }
@@ -661,7 +664,17 @@ struct Scene::Impl {
     std::lock_guard<std::mutex> lock(mutex);
     if (tree_ready.load(std::memory_order_relaxed)) return;
     detail::FloatEnvGuard env;
-    build_tree();
+    if (tree_stale) build_tree();
+    tree_stale = false;
+    if (masks_changed) {
+      // set_ray_mask() changes what the leaves hold, not the tree: a build has written the
+      // new masks already, a refit has not.
+      for (std::size_t l = 0; l < ray_leaves.size(); ++l) {
+        const uint32_t item = bvh.leaves[l].item[0];
+        ray_leaves[l].ray_mask = item == detail::kNoItem ? 0u : defs[tree_slots[item]].ray_mask;
+      }
+      masks_changed = false;
+    }
     tree_ready.store(true, std::memory_order_release);
   }
 
@@ -725,6 +738,7 @@ Status Scene::configure(const SceneSettings& s) {
   GYRO_TRY(probe.build(nullptr, nullptr, 0, s.octree));  // checks the def
   impl_->settings = s;
   impl_->rebuild = true;
+  impl_->tree_stale = true;
   impl_->tree_ready.store(false, std::memory_order_relaxed);
   return Status::ok;
 }
@@ -777,6 +791,17 @@ Status Scene::set_transform(ModelId id, const ModelTransform& local) {
   m.defs[s].transform = normalized_transform(local);
   m.note_move(s);
   m.changed();
+  return Status::ok;
+}
+
+Status Scene::set_ray_mask(ModelId id, uint32_t ray_mask) {
+  Impl& m = *impl_;
+  const uint32_t s = m.slot(id);
+  if (s == detail::IdPool::kNoSlot) return fail(Status::stale_id, "model {%u, %u} is not live", id.index, id.generation);
+  if (m.defs[s].ray_mask == ray_mask) return Status::ok;
+  m.defs[s].ray_mask = ray_mask;
+  m.masks_changed = true;
+  m.tree_ready.store(false, std::memory_order_relaxed);  // the leaves' masks, not the world or the tree
   return Status::ok;
 }
 
@@ -885,8 +910,8 @@ namespace {
 // running best (closest) or first (any) hit.
 class RayWalk {
  public:
-  RayWalk(const Scene::Impl& m, const Ray& ray, float tmin, float tmax, bool any)
-      : m_(m), ray_(ray), tmin_(tmin), tmax_(tmax), any_(any) {
+  RayWalk(const Scene::Impl& m, const Ray& ray, float tmin, float tmax, bool any, uint32_t mask)
+      : m_(m), ray_(ray), tmin_(tmin), tmax_(tmax), any_(any), mask_(mask) {
     const float o[3] = {ray.origin.x, ray.origin.y, ray.origin.z};
     const float d[3] = {ray.direction.x, ray.direction.y, ray.direction.z};
     const float pad = pad_of(ray);
@@ -904,6 +929,7 @@ class RayWalk {
   // The planes' best (any hit: the first in id order).
   const SceneHit& planes() {
     for (uint32_t s : m_.plane_slots) {
+      if ((m_.defs[s].ray_mask & mask_) == 0) continue;  // a layer the ray does not see
       test(s);
       if (any_ && found()) break;
     }
@@ -951,6 +977,7 @@ class RayWalk {
   Ray ray_;
   float tmin_, tmax_;
   bool any_;
+  uint32_t mask_;
   float o_[3], inv_[3], pad_[3];
   uint32_t neg_[3];
   float best_t_ = kInf;
@@ -1011,7 +1038,8 @@ struct Block {
   }
   float tmin(std::size_t k) const { return rays->tmin ? rays->tmin[begin + k] : 0.0f; }
   float tmax(std::size_t k) const { return rays->tmax ? rays->tmax[begin + k] : kInf; }
-  RayWalk walker(std::size_t k) const { return RayWalk(*m, ray(k), tmin(k), tmax(k), any); }
+  uint32_t mask(std::size_t k) const { return rays->mask ? rays->mask[begin + k] : kAllRayLayers; }
+  RayWalk walker(std::size_t k) const { return RayWalk(*m, ray(k), tmin(k), tmax(k), any, mask(k)); }
 };
 
 float exact_t(void* ctx, std::size_t k, uint32_t item, float best_t, uint32_t best_key, float limit) {
@@ -1040,7 +1068,7 @@ void trace_block(const Scene::Impl& m, const RaysView& rays, std::size_t begin, 
     valid[k] = valid_ray(ray, b.tmin(k), b.tmax(k));
     best_t[k] = kInf, best_key[k] = kNoIndex, best_item[k] = detail::kNoItem, pad[k] = 0.0f, walk[k] = 0;
     b.cached_item[k] = detail::kNoItem;
-    if (!valid[k]) continue;
+    if (!valid[k] || b.mask(k) == 0) continue;  // a ray of no layer sees nothing
     if (!m.plane_slots.empty()) {  // (a walker's three divisions only where there are planes)
       RayWalk w = b.walker(k);
       b.cached[k] = w.planes();
@@ -1057,7 +1085,8 @@ void trace_block(const Scene::Impl& m, const RaysView& rays, std::size_t begin, 
     const SceneRaycastArgs args{m.bvh.nodes.data(), m.ray_leaves.data(), m.ray_boxes.data(), rays.ox + begin, rays.oy + begin,
                                 rays.oz + begin,    rays.dx + begin,      rays.dy + begin, rays.dz + begin,
                                 shift(rays.tmin),   shift(rays.tmax),     pad,             walk,
-                                any,                prefetch,             best_t,          best_key,
+                                rays.mask ? rays.mask + begin : nullptr,  any,             prefetch,
+                                best_t,             best_key,
                                 best_item,          exact_t,              &b};
     GYRO_DISPATCH(scene_raycast)(args, 0, n);
   }
@@ -1082,11 +1111,11 @@ void trace_block(const Scene::Impl& m, const RaysView& rays, std::size_t begin, 
   }
 }
 
-SceneHit trace(const Scene& scene, const Ray& ray, float tmin, float tmax, bool any) {
+SceneHit trace(const Scene& scene, const Ray& ray, float tmin, float tmax, bool any, uint32_t mask) {
   if (!valid_ray(ray, tmin, tmax)) return {};
   const Scene::Impl& m = *scene.impl();
   const RaysView view{&ray.origin.x, &ray.origin.y, &ray.origin.z, &ray.direction.x, &ray.direction.y,
-                      &ray.direction.z, &tmin, &tmax};
+                      &ray.direction.z, &tmin, &tmax, &mask};
   SceneHit h;
   bool valid;
   trace_block(m, view, 0, 1, any, true, &h, &valid);
@@ -1126,16 +1155,16 @@ Status run_batch(const Scene& scene, const RaysView& rays, std::size_t n, const 
 
 }  // namespace
 
-SceneHit raycast(const Scene& scene, const Ray& ray, float tmin, float tmax) {
+SceneHit raycast(const Scene& scene, const Ray& ray, float tmin, float tmax, uint32_t mask) {
   detail::FloatEnvGuard env;
   scene.prepare();
-  return trace(scene, ray, tmin, tmax, false);
+  return trace(scene, ray, tmin, tmax, false, mask);
 }
 
-SceneHit raycast_any(const Scene& scene, const Ray& ray, float tmin, float tmax) {
+SceneHit raycast_any(const Scene& scene, const Ray& ray, float tmin, float tmax, uint32_t mask) {
   detail::FloatEnvGuard env;
   scene.prepare();
-  return trace(scene, ray, tmin, tmax, true);
+  return trace(scene, ray, tmin, tmax, true, mask);
 }
 
 Status raycast_closest(const Scene& scene, const RaysView& rays, std::size_t ray_count, const SceneHitsOut& hits) {

@@ -77,6 +77,7 @@ struct Walk {
   unsigned oct;
   float tmax, best_t, limit;
   uint32_t best_key, best_item;
+  uint32_t mask;  // the ray's layers
   std::size_t ray;
   Entry next;
   int sp;
@@ -136,6 +137,7 @@ template <bool OnStack, bool Fetch> inline void start(const SceneRaycastArgs& a,
   w.dd1 = ray_dd(w.ray1.d);
   w.best_t = a.best_t[i], w.best_key = a.best_key[i], w.best_item = kNone;
   w.ray = i;
+  w.mask = a.mask ? a.mask[i] : 0xFFFFFFFFu;
   w.next = {0, tmin};
   w.stack_code[0] = 0, w.stack_near[0] = tmin;
   w.sp = OnStack ? 1 : 0;
@@ -168,14 +170,15 @@ template <bool Fetch> inline bool next_entry(const SceneRaycastArgs& a, Walk& w)
 // found its hit (the walk is over). One model, tested by the scalar raycast's expressions
 // (lanes.hpp: a lane computes what a float does, so the bits are the same).
 template <bool AnyHit> inline bool visit_leaf(const SceneRaycastArgs& a, Walk& w, const SceneLeaf& leaf) {
+  if ((leaf.ray_mask & w.mask) == 0) return false;  // a layer the ray does not see
   float t;
-  if (leaf.box_block != detail::kNoItem) {
+  if (leaf.box_block == detail::kExactLeaf) {
+    t = a.exact(a.ctx, w.ray, leaf.item, w.best_t, w.best_key, limit_of(w, AnyHit));
+  } else if (leaf.box_block != detail::kNoItem) {
     const float* v = a.boxes[leaf.box_block].obb;
     const auto v3 = [&](int r) { return V3<float>{v[r], v[r + 1], v[r + 2]}; };
     const ObbL<float> b{v3(0), v3(3), {v3(6), v3(9), v3(12)}};
     t = ray_obb_t(w.ray1, b, w.tmin1, w.tmax1);
-  } else if (leaf.exact) {
-    t = a.exact(a.ctx, w.ray, leaf.item, w.best_t, w.best_key, limit_of(w, AnyHit));
   } else {
     // Most spheres a ray's walk reaches it does not hit: nothing more to do there.
     const SphereL<float> s{{leaf.sphere[0], leaf.sphere[1], leaf.sphere[2]}, leaf.sphere[3]};

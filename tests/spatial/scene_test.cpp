@@ -810,6 +810,123 @@ TEST(Scene, QueriesEqualBruteForceInBothModes) {
   EXPECT_GT(found, 1000u);
 }
 
+// Ray layers (ModelDef::ray_mask, RaysView::mask): every path's answer is the brute force
+// over the models sharing a bit with the ray's mask. Masks set at add and by set_ray_mask
+// (with moves, so a refit and a rebuild rewrite the leaves too), both structures, every
+// level, 1 and 3 threads, single rays and batches, closest and any hits.
+std::vector<SceneHit> brute_masked(const Scene& scene, const Rays& rays, const std::vector<uint32_t>& masks,
+                                   std::size_t* hits, std::size_t* hidden) {
+  const std::vector<Snapshot> models = snapshot(scene);
+  std::vector<SceneHit> expect(rays.set.size());
+  for (std::size_t i = 0; i < expect.size(); ++i) {
+    std::vector<Snapshot> seen;
+    for (const Snapshot& m : models)
+      if ((m.info.def.ray_mask & masks[i]) != 0) seen.push_back(m);
+    expect[i] = brute_closest(seen, rays.ray(i), rays.tmin[i], rays.tmax[i]);
+    *hits += expect[i].hit.hit;
+    // A ray the masks changed: what it would hit seeing every layer is hidden from it.
+    *hidden += brute_closest(models, rays.ray(i), rays.tmin[i], rays.tmax[i]).model != expect[i].model;
+  }
+  return expect;
+}
+
+void expect_masked_raycasts(Scene& scene, const Rays& rays, const std::vector<uint32_t>& masks,
+                            const std::vector<SceneHit>& expect) {
+  const std::vector<Snapshot> models = snapshot(scene);
+  const std::size_t n = rays.set.size();
+  RaysView view = rays.view();
+  view.mask = masks.data();
+  for (std::size_t i = 0; i < n; i += 3) {
+    expect_same(raycast(scene, rays.ray(i), rays.tmin[i], rays.tmax[i], masks[i]), expect[i], i);
+    const SceneHit any = raycast_any(scene, rays.ray(i), rays.tmin[i], rays.tmax[i], masks[i]);
+    ASSERT_EQ(any.hit.hit, expect[i].hit.hit) << "ray " << i;
+  }
+  for (const SimdLevel level : testing::available_levels())
+    for (const uint32_t threads : {1u, 3u}) {
+      ScopedExecution exec(level, threads);
+      Columns c(n);
+      ASSERT_EQ(raycast_closest(scene, view, n, c.out()), Status::ok);
+      for (std::size_t i = 0; i < n; ++i) expect_batch_matches(c, expect, rays, i);
+      Columns a(n);
+      ASSERT_EQ(raycast_any(scene, view, n, a.out()), Status::ok);
+      for (std::size_t i = 0; i < n; ++i) {
+        ASSERT_EQ(a.model[i].is_null(), !expect[i].hit.hit) << "ray " << i;
+        if (a.model[i].is_null()) continue;
+        // The model an any hit names is one the ray sees.
+        const auto it = std::find_if(models.begin(), models.end(), [&](const Snapshot& m) { return m.id == a.model[i]; });
+        ASSERT_NE(it, models.end());
+        EXPECT_NE(it->info.def.ray_mask & masks[i], 0u) << "ray " << i;
+      }
+    }
+}
+
+TEST(Scene, RayMasksHideModelsFromRaysOfOtherLayers) {
+  TestScene s(0, 81);
+  SplitMix64 rng(82);
+  const uint32_t layers[7] = {1u, 2u, 4u, 8u, 6u, 0u, kAllRayLayers};
+  for (int i = 0; i < 300; ++i) {
+    ModelDef d = random_def(rng, s.meshes, s.ids);
+    d.ray_mask = layers[rng.next() % 7];
+    s.add(d);
+  }
+  // The two planes of TestScene in layers 1 and 4.
+  ASSERT_EQ(s.scene.set_ray_mask(s.ids[0], 1u), Status::ok);
+  ASSERT_EQ(s.scene.set_ray_mask(s.ids[1], 4u), Status::ok);
+  const Rays rays = make_rays(snapshot(s.scene), 900, 83);
+  std::vector<uint32_t> masks(rays.set.size());
+  for (uint32_t& m : masks) m = layers[rng.next() % 7];
+  const auto check = [&](const char* what) {
+    SCOPED_TRACE(what);
+    std::size_t hits = 0, hidden = 0;
+    const std::vector<SceneHit> expect = brute_masked(s.scene, rays, masks, &hits, &hidden);
+    EXPECT_GT(hits, 150u);
+    EXPECT_GT(hidden, 100u);  // the masks changed that many answers
+    SceneSettings modes[2];
+    modes[1].accel = SceneAccel::octree;
+    for (const SceneSettings& settings : modes) {
+      ASSERT_EQ(s.scene.configure(settings), Status::ok);
+      expect_masked_raycasts(s.scene, rays, masks, expect);
+    }
+  };
+  check("masks at add");
+  // New masks on the built tree: set_ray_mask neither rebuilds nor refits.
+  s.scene.prepare();
+  const SceneStats before = s.scene.stats();
+  for (std::size_t i = 0; i < s.ids.size(); i += 4) ASSERT_EQ(s.scene.set_ray_mask(s.ids[i], layers[i % 7]), Status::ok);
+  s.scene.prepare();
+  EXPECT_EQ(s.scene.stats().builds, before.builds);
+  EXPECT_EQ(s.scene.stats().refits, before.refits);
+  check("masks set");
+  // Masks and moves in one frame (a refit writes the moved spheres' leaves alone).
+  for (std::size_t i = 2; i < s.ids.size(); i += 6) {
+    ModelInfo info;
+    ASSERT_EQ(s.scene.model(s.ids[i], &info), Status::ok);
+    ModelTransform t = info.def.transform;
+    t.position = t.position + vec3{0.5f, -0.25f, 0.75f};
+    ASSERT_EQ(s.scene.set_transform(s.ids[i], t), Status::ok);
+    ASSERT_EQ(s.scene.set_ray_mask(s.ids[i], layers[(i + 3) % 7]), Status::ok);
+  }
+  check("masks and moves");
+  // Every ray of every layer: the unmasked answers.
+  std::vector<uint32_t> all(rays.set.size(), kAllRayLayers);
+  std::size_t hits = 0, invalid = 0;
+  const std::vector<SceneHit> unmasked = brute_answers(s.scene, rays, &hits, &invalid);
+  std::vector<ModelId> visible;
+  for (ModelId id : s.ids) {
+    ModelInfo info;
+    ASSERT_EQ(s.scene.model(id, &info), Status::ok);
+    if (info.def.ray_mask == kAllRayLayers) visible.push_back(id);
+  }
+  for (ModelId id : s.ids) ASSERT_EQ(s.scene.set_ray_mask(id, kAllRayLayers), Status::ok);
+  expect_masked_raycasts(s.scene, rays, all, unmasked);
+  Columns c(rays.set.size());
+  ASSERT_EQ(raycast_closest(s.scene, rays.view(), rays.set.size(), c.out()), Status::ok);  // null masks
+  for (std::size_t i = 0; i < rays.set.size(); ++i) expect_batch_matches(c, unmasked, rays, i);
+  // A stale id changes nothing.
+  ASSERT_EQ(s.scene.remove_model(s.ids[5]), Status::ok);
+  EXPECT_EQ(s.scene.set_ray_mask(s.ids[5], 1u), Status::stale_id);
+}
+
 // Moves alone refit the BVH (SceneSettings::refit): the same answers as brute force over
 // the moved models, rays and queries, with the tree's topology kept; moves that spoil the
 // tree (its expected cost beyond kSceneRefitCost times the build's) rebuild it, and so do

@@ -269,6 +269,43 @@ uint64_t scene_mesh_bvh() {
   return h.digest();
 }
 
+// `count` rays with origins scale * u + offset on each axis and directions u - 0.5, drawn
+// in that order (into an array: a call's arguments are evaluated in no fixed order, and
+// g++ and clang++ differ).
+RaySet random_rays(uint64_t seed, int count, double scale, double offset) {
+  RaySet r;
+  SplitMix64 rng(seed);
+  for (int i = 0; i < count; ++i) {
+    float v[6];
+    for (int k = 0; k < 6; ++k) v[k] = k < 3 ? float(scale * rng.u() + offset) : float(rng.u() - 0.5);
+    r.push(v[0], v[1], v[2], v[3], v[4], v[5]);
+  }
+  return r;
+}
+
+// `count` spheres, boxes and instances of `meshes` (in turn), scaled, rotated, every seventh
+// the child of an earlier one, in a 60-unit cube; their ids appended to ids.
+bool add_random_models(Scene& scene, SplitMix64& rng, int count,
+                       const std::vector<std::shared_ptr<const TriangleMesh>>& meshes, std::vector<ModelId>& ids) {
+  for (int i = 0; i < count; ++i) {
+    ModelDef d;
+    d.shape = ModelShape(i % 3);
+    d.radius = float(0.2 + 2 * rng.u());
+    d.half_extents = {float(0.1 + rng.u()), float(0.1 + 2 * rng.u()), float(0.1 + rng.u())};
+    if (d.shape == ModelShape::mesh) d.mesh = meshes[std::size_t(i) % meshes.size()];
+    d.transform.position = {float(60 * rng.u() - 30), float(60 * rng.u() - 30), float(60 * rng.u() - 30)};
+    const vec3 axis{float(rng.u() - 0.5), float(rng.u()), float(rng.u() - 0.5)};
+    const float angle = float(6 * rng.u());
+    d.transform.rotation = from_axis_angle(axis, angle);
+    d.transform.scale = float(0.5 + rng.u());
+    if (i % 7 == 6) d.parent = ids[std::size_t(rng.next() % ids.size())], d.transform.position = d.transform.position * 0.1f;
+    ModelId id;
+    if (scene.add_model(d, &id) != Status::ok) return false;
+    ids.push_back(id);
+  }
+  return true;
+}
+
 // A scene of spheres, boxes, instanced meshes (scaled, rotated, some parented) and two
 // planes, in both acceleration modes: batch closest and any hits with model ids, normals
 // and barycentrics, and sphere, AABB and frustum queries; then after removes and moves
@@ -284,18 +321,7 @@ uint64_t scene_models() {
     return out;
   }();
   if (meshes.size() != 2) return 0;
-  static const RaySet rays = [] {
-    RaySet r;
-    SplitMix64 rng(41);
-    for (int i = 0; i < 3000; ++i) {
-      // Braced lists evaluate left to right; function arguments in no fixed order (g++ and
-      // clang++ differ), so random draws never go straight into a call.
-      const float v[6] = {float(80 * rng.u() - 40), float(80 * rng.u() - 40), float(80 * rng.u() - 40),
-                          float(rng.u() - 0.5),     float(rng.u() - 0.5),     float(rng.u() - 0.5)};
-      r.push(v[0], v[1], v[2], v[3], v[4], v[5]);
-    }
-    return r;
-  }();
+  static const RaySet rays = random_rays(41, 3000, 80.0, -40.0);
   detail::StateHasher h;
   for (SceneAccel accel : {SceneAccel::bvh, SceneAccel::octree}) {
     SceneSettings settings;
@@ -303,22 +329,7 @@ uint64_t scene_models() {
     Scene scene(settings);
     SplitMix64 rng(42);
     std::vector<ModelId> ids;
-    for (int i = 0; i < 400; ++i) {
-      ModelDef d;
-      d.shape = ModelShape(i % 3);
-      d.radius = float(0.2 + 2 * rng.u());
-      d.half_extents = {float(0.1 + rng.u()), float(0.1 + 2 * rng.u()), float(0.1 + rng.u())};
-      if (d.shape == ModelShape::mesh) d.mesh = meshes[i % 2];
-      d.transform.position = {float(60 * rng.u() - 30), float(60 * rng.u() - 30), float(60 * rng.u() - 30)};
-      const vec3 axis{float(rng.u() - 0.5), float(rng.u()), float(rng.u() - 0.5)};
-      const float angle = float(6 * rng.u());
-      d.transform.rotation = from_axis_angle(axis, angle);
-      d.transform.scale = float(0.5 + rng.u());
-      if (i % 7 == 6) d.parent = ids[std::size_t(rng.next() % ids.size())], d.transform.position = d.transform.position * 0.1f;
-      ModelId id;
-      if (scene.add_model(d, &id) != Status::ok) return 0;
-      ids.push_back(id);
-    }
+    if (!add_random_models(scene, rng, 400, meshes, ids)) return 0;
     ModelDef plane;
     plane.shape = ModelShape::plane;
     plane.plane = {{0.0f, 1.0f, 0.0f}, -35.0f};
@@ -378,6 +389,69 @@ uint64_t scene_models() {
   return h.digest();
 }
 
+// Ray layers: 300 models of add_random_models() (some parented) and a plane, each model in
+// one of four layers, in none or in all (set_ray_mask before the first build, and the plane's
+// ModelDef::ray_mask), under both structures; rays of random masks (one layer, two, none,
+// all), closest and any hits, single rays too; then after a tenth of the masks changed
+// (set_ray_mask on a built tree: only the leaves' masks rewritten).
+uint64_t scene_ray_masks() {
+  static const std::vector<std::shared_ptr<const TriangleMesh>> meshes = [] {
+    auto t = std::make_shared<TriangleMesh>();
+    return TriangleMesh::create(make_sphere_mesh(1.2f, 6, 10), *t) == Status::ok
+               ? std::vector<std::shared_ptr<const TriangleMesh>>{t}
+               : std::vector<std::shared_ptr<const TriangleMesh>>{};
+  }();
+  if (meshes.empty()) return 0;
+  static const uint32_t kLayers[7] = {1u, 2u, 4u, 8u, 3u, 0u, kAllRayLayers};
+  static const std::vector<uint32_t> ray_masks = [] {
+    std::vector<uint32_t> m;
+    SplitMix64 rng(52);
+    for (int i = 0; i < 2000; ++i) m.push_back(kLayers[rng.next() % 7]);
+    return m;
+  }();
+  static const RaySet rays = random_rays(51, 2000, 70.0, -35.0);
+  detail::StateHasher h;
+  for (SceneAccel accel : {SceneAccel::bvh, SceneAccel::octree}) {
+    SceneSettings settings;
+    settings.accel = accel;
+    Scene scene(settings);
+    SplitMix64 rng(53);
+    std::vector<ModelId> ids;
+    if (!add_random_models(scene, rng, 300, meshes, ids)) return 0;
+    for (std::size_t i = 0; i < ids.size(); ++i)
+      if (scene.set_ray_mask(ids[i], i % 11 == 0 ? 0u : i % 13 == 0 ? kAllRayLayers : 1u << (rng.next() % 4)) !=
+          Status::ok)
+        return 0;
+    ModelDef plane;
+    plane.shape = ModelShape::plane;
+    plane.plane = {{0.0f, 1.0f, 0.0f}, -30.0f};
+    plane.ray_mask = 2u;
+    ModelId pid;
+    if (scene.add_model(plane, &pid) != Status::ok) return 0;
+    for (int round = 0; round < 2; ++round) {
+      const std::size_t n = rays.size();
+      std::vector<float> t(n);
+      std::vector<ModelId> model(n);
+      std::vector<int32_t> prim(n);
+      RaysView view = rays.view();
+      view.mask = ray_masks.data();
+      if (raycast_closest(scene, view, n, SceneHitsOut{t.data(), model.data(), prim.data()}) != Status::ok) return 0;
+      h.add_floats(t);
+      for (std::size_t i = 0; i < n; ++i) h.add_u32(model[i].index), h.add_u32(uint32_t(prim[i]));
+      if (raycast_any(scene, view, n, SceneHitsOut{t.data(), model.data(), prim.data()}) != Status::ok) return 0;
+      for (std::size_t i = 0; i < n; ++i) h.add_u32(model[i].index);
+      for (std::size_t i = 0; i < n; i += 7) {
+        const Ray ray{{rays.ox[i], rays.oy[i], rays.oz[i]}, {rays.dx[i], rays.dy[i], rays.dz[i]}};
+        const SceneHit one = raycast(scene, ray, 0.0f, __builtin_inff(), ray_masks[i]);
+        h.add_u32(std::bit_cast<uint32_t>(one.hit.t)), h.add_u32(one.model.index);
+      }
+      for (std::size_t i = 0; i < ids.size(); i += 10)
+        if (scene.set_ray_mask(ids[i], kLayers[(i / 10) % 7]) != Status::ok) return 0;
+    }
+  }
+  return h.digest();
+}
+
 // Rays from one origin, which the batch raycasts walk in packets of eight: a lidar fan
 // (32 channels x 128 columns, some with a [tmin, tmax] window) over det_terrain(), and a
 // camera's fan into a scene of spheres, boxes, mesh instances and a plane; closest hits
@@ -403,16 +477,7 @@ uint64_t scene_mesh_slivers() {
     SplitMix64 rng(45);
     return sliver_mesh(2000, rng, 20.0f, 4.0f);
   }();
-  static const RaySet rays = [] {
-    RaySet r;
-    SplitMix64 rng(46);
-    for (int i = 0; i < 3000; ++i) {
-      float v[6];  // drawn in order (a call's arguments are evaluated in no fixed order)
-      for (int k = 0; k < 6; ++k) v[k] = k < 3 ? float(24 * rng.u() - 2) : float(rng.u() - 0.5);
-      r.push(v[0], v[1], v[2], v[3], v[4], v[5]);
-    }
-    return r;
-  }();
+  static const RaySet rays = random_rays(46, 3000, 24.0, -2.0);
   static const RaySet fan_rays = fan({10.0f, 10.0f, 10.0f}, 0.0f, 6.2831853f, 96, -1.2f, 1.2f, 24);
   TriangleMesh tm;
   if (TriangleMesh::create(mesh, tm) != Status::ok) return 0;
@@ -912,6 +977,7 @@ const DetScene kScenes[] = {
     {"mesh_bvh", scene_mesh_bvh, 0xde9c8060e85afecaull},
     {"camera_frustum", scene_camera_frustum, 0x246ff5bf8a6a766cull},
     {"scene_models", scene_models, 0xdba9aabb65c16b46ull},
+    {"scene_ray_masks", scene_ray_masks, 0x06c0ede04971a44bull},
     {"rays_one_origin", scene_rays_one_origin, 0x4ee4f0393c05adbaull},
     {"mesh_slivers", scene_mesh_slivers, 0xa80aeab449555782ull},
 #endif

@@ -360,6 +360,27 @@ namespace Gyro.Tests
                         Ok(hits.T[k] == before[k], accel + ": refit " + on + " after a move changes no t");
                 }
 
+                // Ray layers: the sphere in layer 2 only; ray 0 sees layer 1 (passes through it),
+                // ray 4 layer 1 (still sees the box, in every layer).
+                s.SetRayMask(sphere, 2u);
+                uint[] masks = { 1u, 2u, ~0u, 0u, 1u };
+                s.RaycastClosest(rays, hits, masks);
+                Ok(hits.Model[0].IsNull && float.IsPositiveInfinity(hits.T[0]), accel + ": a ray of layer 1 passes through a sphere of layer 2");
+                Ok(hits.Model[1] == sphere && hits.T[1] == before[1], accel + ": a ray of layer 2 hits it, the same t");
+                Ok(hits.Model[3].IsNull, accel + ": a ray of no layer hits nothing");
+                Ok(hits.Model[4] == box && hits.T[4] == before[4], accel + ": a ray of layer 1 still hits the box");
+                s.RaycastAny(rays, hits, masks);
+                Ok(hits.Model[0].IsNull && hits.Model[1] == sphere, accel + ": any-hit honours the masks");
+                s.SetRayMask(sphere, ~0u);
+                s.RaycastClosest(rays, hits);
+                Ok(hits.Model[0] == sphere && hits.T[0] == before[0], accel + ": the sphere back in every layer");
+                try
+                {
+                    s.RaycastClosest(rays, hits, new uint[2]);
+                    Ok(false, accel + ": fewer masks than rays are refused");
+                }
+                catch (ArgumentException) { Ok(true, accel + ": fewer masks than rays are refused (ArgumentException)"); }
+
                 SceneHitBatch any = new SceneHitBatch(5, normals: false);
                 s.RaycastAny(rays, any);
                 Ok(!any.Model[0].IsNull && any.Model[2].IsNull && any.Nx == null, accel + ": any-hit: hit, miss");

@@ -134,6 +134,12 @@ impl Scene {
         check(unsafe { sys::gyro_scene_set_parent(self.raw.as_ptr(), id, parent) })
     }
 
+    /// The ray layers the model is in (all 32 to start with): a masked ray passes through a
+    /// model whose mask shares no bit with its own; 0 hides it from every ray.
+    pub fn set_ray_mask(&mut self, id: ModelId, ray_mask: u32) -> Result<()> {
+        check(unsafe { sys::gyro_scene_set_ray_mask(self.raw.as_ptr(), id, ray_mask) })
+    }
+
     pub fn model_count(&self) -> usize {
         unsafe { sys::gyro_scene_model_count(self.as_ptr()).max(0) as usize }
     }
@@ -152,6 +158,28 @@ impl Scene {
         let h = hits.raw(n)?;
         let r = rays.raw();
         check(unsafe { sys::gyro_scene_raycast_any(self.as_ptr(), &r, count(n, "rays")?, &h) })
+    }
+
+    /// The closest hit of every ray among the models whose ray mask shares a bit with the
+    /// ray's `masks[i]` (at least as many masks as rays).
+    pub fn raycast_closest_masked(&self, rays: &Rays, masks: &[u32], hits: &mut SceneHits) -> Result<()> {
+        let (r, h, n) = self.masked(rays, masks, hits)?;
+        check(unsafe { sys::gyro_scene_raycast_closest_masked(self.as_ptr(), &r, masks.as_ptr(), n, &h) })
+    }
+
+    /// Any hit, with ray layers as `raycast_closest_masked`.
+    pub fn raycast_any_masked(&self, rays: &Rays, masks: &[u32], hits: &mut SceneHits) -> Result<()> {
+        let (r, h, n) = self.masked(rays, masks, hits)?;
+        check(unsafe { sys::gyro_scene_raycast_any_masked(self.as_ptr(), &r, masks.as_ptr(), n, &h) })
+    }
+
+    fn masked(&self, rays: &Rays, masks: &[u32], hits: &mut SceneHits) -> Result<(sys::gyro_ray_soa, sys::gyro_scene_hit_soa, i32)> {
+        let n = rays.len()?;
+        if masks.len() < n {
+            return Err(Error::local(Status::InvalidCount, format!("ray masks: {} for {n} rays", masks.len())));
+        }
+        let h = hits.raw(n)?;
+        Ok((rays.raw(), h, count(n, "rays")?))
     }
 
     /// The models overlapping a sphere, in ascending id order.

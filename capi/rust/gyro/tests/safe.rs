@@ -240,6 +240,23 @@ fn scene_raycasts_name_the_model_hit() {
     assert!(same(model[2], floor_id) && close(t[2], 7.0, 1e-5) && prim[2] >= 0 && close(ny[2], 1.0, 1e-6));
     assert_eq!((model[3].index, model[3].generation, prim[3]), (0, 0, -1));
     assert!(t[3].is_infinite());
+    // Ray layers: the sphere in layer 2 only. Ray 0 (layer 1) passes through it to nothing,
+    // ray 1 (layer 2) still hits the cube, which is in every layer; a mask of 0 sees nothing.
+    scene.set_ray_mask(sphere_id, 2).unwrap();
+    {
+        let mut t2 = [0.0f32; 4];
+        let mut model2 = [ModelId { index: 0, generation: 0 }; 4];
+        let mut hits2 = SceneHits { t: &mut t2, model: &mut model2, primitive: None, normal: None, uv: None };
+        scene.raycast_closest_masked(&rays, &[1, 2, 0, u32::MAX], &mut hits2).unwrap();
+        assert!(hits2.t[0].is_infinite() && hits2.model[0].generation == 0);
+        assert!(same(hits2.model[1], cube_id) && hits2.t[1].to_bits() == t[1].to_bits());
+        assert!(hits2.t[2].is_infinite());
+        scene.raycast_any_masked(&rays, &[2, 2, 2, 2], &mut hits2).unwrap();
+        assert!(same(hits2.model[0], sphere_id));
+        let short = scene.raycast_closest_masked(&rays, &[1], &mut hits2).unwrap_err();
+        assert_eq!(short.status(), Status::InvalidCount);
+    }
+    scene.set_ray_mask(sphere_id, u32::MAX).unwrap();
     // Prefetching changes speed only.
     let before = t;
     for mode in [RayPrefetch::Always, RayPrefetch::Never, RayPrefetch::Auto] {
