@@ -1632,6 +1632,11 @@ void op_scene(State& st) {
     return;
   }
   if (what == 5) {
+    if (in.flag(3)) {  // ray layers (ABI 1.9): any mask is valid
+      checked(gyro_scene_set_ray_mask(in.flag(12) ? nullptr : s, id, in.u32()), "gyro_scene_set_ray_mask");
+      if (gyro_scene_model_count(s) != before) die("gyro_scene_set_ray_mask changed the model count");
+      return;
+    }
     const gyro_model_id parent = pick_model(st, slot);
     checked(gyro_scene_set_parent(s, id, parent), "gyro_scene_set_parent");
     if (gyro_scene_model_count(s) != before) die("gyro_scene_set_parent changed the model count");
@@ -1646,8 +1651,17 @@ void op_scene(State& st) {
     const char* name = any ? "gyro_scene_raycast_any" : "gyro_scene_raycast_closest";
     const gyro_ray_soa* R = np == 1 ? nullptr : &r.soa;
     const gyro_scene_hit_soa* H = np == 2 ? nullptr : &hs;
+    // Masked calls (ABI 1.9) with one mask per ray (the count the call is given) or none.
+    std::vector<uint32_t> masks(r.n > 0 ? std::size_t(r.n) : 0);
+    for (uint32_t& m : masks) m = in.flag(2) ? in.u32() : 0xFFFFFFFFu;
+    const int masked = in.u8() % 3;  // 0: unmasked call, 1: masks, 2: null masks
+    const uint32_t* M = masked == 1 && !masks.empty() ? masks.data() : nullptr;
+    if (masked != 0) name = any ? "gyro_scene_raycast_any_masked" : "gyro_scene_raycast_closest_masked";
     const gyro_status rs =
-        checked(any ? gyro_scene_raycast_any(s, R, r.n, H) : gyro_scene_raycast_closest(s, R, r.n, H), name);
+        checked(masked != 0 ? (any ? gyro_scene_raycast_any_masked(s, R, M, r.n, H)
+                                   : gyro_scene_raycast_closest_masked(s, R, M, r.n, H))
+                            : (any ? gyro_scene_raycast_any(s, R, r.n, H) : gyro_scene_raycast_closest(s, R, r.n, H)),
+                name);
     h.untouched_unless(rs, name);
     return;
   }
