@@ -418,12 +418,12 @@ GYRO_API gyro_status gyro_scene_remove_model(gyro_scene* scene, gyro_model_id id
 GYRO_API gyro_status gyro_scene_set_transform(gyro_scene* scene, gyro_model_id id, const gyro_transform* local);
 /** A null parent detaches the model; its local transform is kept. */
 GYRO_API gyro_status gyro_scene_set_parent(gyro_scene* scene, gyro_model_id id, gyro_model_id parent);
-/** Sets the ray layers a model is in (ABI 1.9; every model starts in all 32, 0xFFFFFFFF):
- *  a masked raycast's ray passes through a model whose mask shares no bit with its own. 0
- *  hides the model from every ray; the overlap and frustum queries ignore masks. Not a
- *  structural change (the tree is neither rebuilt nor refit). STALE_ID or NULL_ARGUMENT
- *  change nothing. */
-GYRO_API gyro_status gyro_scene_set_ray_mask(gyro_scene* scene, gyro_model_id id, uint32_t ray_mask);
+/** Sets the layers a model is in (ABI 1.9; every model starts in all 32, 0xFFFFFFFF): the
+ *  masked raycasts, queries and picks (the _masked calls) see a model only when their mask
+ *  shares a bit with its layers; 0 hides it from all of them, the unmasked calls see it.
+ *  Not a structural change (the tree is neither rebuilt nor refit). STALE_ID or
+ *  NULL_ARGUMENT change nothing. */
+GYRO_API gyro_status gyro_scene_set_layers(gyro_scene* scene, gyro_model_id id, uint32_t layers);
 GYRO_API int32_t gyro_scene_model_count(const gyro_scene* scene);
 
 /** Per-ray scene results: t and model required, the rest optional (NULL to skip; normal
@@ -448,13 +448,13 @@ GYRO_API gyro_status gyro_scene_raycast_closest(const gyro_scene* scene, const g
 /** Any hit (occlusion, line of sight). */
 GYRO_API gyro_status gyro_scene_raycast_any(const gyro_scene* scene, const gyro_ray_soa* rays, int32_t ray_count,
                                             const gyro_scene_hit_soa* hits);
-/** gyro_scene_raycast_closest with ray layers (ABI 1.9): ray i sees only the models whose
- *  ray mask (gyro_scene_set_ray_mask) shares a bit with masks[i]. masks may be NULL: every
+/** gyro_scene_raycast_closest with layers (ABI 1.9): ray i sees only the models whose
+ *  layers (gyro_scene_set_layers) share a bit with masks[i]. masks may be NULL: every
  *  ray sees every layer, as gyro_scene_raycast_closest. */
 GYRO_API gyro_status gyro_scene_raycast_closest_masked(const gyro_scene* scene, const gyro_ray_soa* rays,
                                                        const uint32_t* masks, int32_t ray_count,
                                                        const gyro_scene_hit_soa* hits);
-/** gyro_scene_raycast_any with ray layers (ABI 1.9), as gyro_scene_raycast_closest_masked. */
+/** gyro_scene_raycast_any with layers (ABI 1.9), as gyro_scene_raycast_closest_masked. */
 GYRO_API gyro_status gyro_scene_raycast_any_masked(const gyro_scene* scene, const gyro_ray_soa* rays,
                                                    const uint32_t* masks, int32_t ray_count,
                                                    const gyro_scene_hit_soa* hits);
@@ -466,6 +466,13 @@ GYRO_API gyro_status gyro_scene_query(const gyro_scene* scene, const gyro_shape_
 /** Models whose bounding volume intersects the frustum, ascending ids (as gyro_scene_query). */
 GYRO_API gyro_status gyro_scene_query_frustum(const gyro_scene* scene, const gyro_frustum* frustum, gyro_model_id* out,
                                               int32_t capacity, int32_t* count);
+/** gyro_scene_query for the models whose layers (gyro_scene_set_layers) share a bit with
+ *  `mask` (ABI 1.9). */
+GYRO_API gyro_status gyro_scene_query_masked(const gyro_scene* scene, const gyro_shape_soa* shape, uint32_t mask,
+                                             gyro_model_id* out, int32_t capacity, int32_t* count);
+/** gyro_scene_query_frustum for the models whose layers share a bit with `mask` (ABI 1.9). */
+GYRO_API gyro_status gyro_scene_query_frustum_masked(const gyro_scene* scene, const gyro_frustum* frustum, uint32_t mask,
+                                                     gyro_model_id* out, int32_t capacity, int32_t* count);
 
 typedef struct gyro_scene_hit {
   uint32_t hit; /**< 1 for a hit; 0 and the rest zero otherwise */
@@ -481,6 +488,10 @@ typedef struct gyro_scene_hit {
 /** The closest model under a screen point (pixels, origin top-left, y down). */
 GYRO_API gyro_status gyro_scene_pick(const gyro_scene* scene, const gyro_camera* camera, float screen_x, float screen_y,
                                      float viewport_width, float viewport_height, gyro_scene_hit* out);
+/** gyro_scene_pick among the models whose layers share a bit with `mask` (ABI 1.9). */
+GYRO_API gyro_status gyro_scene_pick_masked(const gyro_scene* scene, const gyro_camera* camera, float screen_x,
+                                            float screen_y, float viewport_width, float viewport_height, uint32_t mask,
+                                            gyro_scene_hit* out);
 
 /* ------------------------------------------------------------------ dynamics world (ABI 1.2) */
 

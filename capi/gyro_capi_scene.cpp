@@ -182,10 +182,10 @@ GYRO_API gyro_status gyro_scene_set_parent(gyro_scene* scene, gyro_model_id id, 
   });
 }
 
-GYRO_API gyro_status gyro_scene_set_ray_mask(gyro_scene* scene, gyro_model_id id, uint32_t ray_mask) {
+GYRO_API gyro_status gyro_scene_set_layers(gyro_scene* scene, gyro_model_id id, uint32_t layers) {
   return guarded([&]() -> Status {
     GYRO_TRY(require(scene, "scene"));
-    return scene->scene.set_ray_mask(id_of(id), ray_mask);
+    return scene->scene.set_layers(id_of(id), layers);
   });
 }
 
@@ -215,8 +215,8 @@ GYRO_API gyro_status gyro_scene_raycast_any_masked(const gyro_scene* scene, cons
   return guarded([&] { return scene_raycast(scene, rays, masks, ray_count, hits, true); });
 }
 
-GYRO_API gyro_status gyro_scene_query(const gyro_scene* scene, const gyro_shape_soa* shape, gyro_model_id* out,
-                                      int32_t capacity, int32_t* count) {
+GYRO_API gyro_status gyro_scene_query_masked(const gyro_scene* scene, const gyro_shape_soa* shape, uint32_t mask,
+                                             gyro_model_id* out, int32_t capacity, int32_t* count) {
   return guarded([&]() -> Status {
     GYRO_TRY(require(scene, "scene"));
     GYRO_TRY(require(shape, "shape"));
@@ -227,14 +227,14 @@ GYRO_API gyro_status gyro_scene_query(const gyro_scene* scene, const gyro_shape_
       case GYRO_SHAPE_SPHERE: {
         const gyro_sphere_soa& s = shape->as.sphere;
         if (!s.cx || !s.cy || !s.cz || !s.r) return fail(Status::null_argument, "shape->as.sphere has a null array");
-        GYRO_TRY(gyro::query(scene->scene, gyro::Sphere{f3(s.cx, s.cy, s.cz), s.r[0]}, ids));
+        GYRO_TRY(gyro::query(scene->scene, gyro::Sphere{f3(s.cx, s.cy, s.cz), s.r[0]}, ids, mask));
         break;
       }
       case GYRO_SHAPE_AABB: {
         const gyro_aabb_soa& b = shape->as.aabb;
         if (!b.cx || !b.cy || !b.cz || !b.ex || !b.ey || !b.ez)
           return fail(Status::null_argument, "shape->as.aabb has a null array");
-        GYRO_TRY(gyro::query(scene->scene, gyro::AABB{f3(b.cx, b.cy, b.cz), f3(b.ex, b.ey, b.ez)}, ids));
+        GYRO_TRY(gyro::query(scene->scene, gyro::AABB{f3(b.cx, b.cy, b.cz), f3(b.ex, b.ey, b.ez)}, ids, mask));
         break;
       }
       case GYRO_SHAPE_OBB: {
@@ -245,7 +245,7 @@ GYRO_API gyro_status gyro_scene_query(const gyro_scene* scene, const gyro_shape_
         gyro::OBB obb{f3(b.cx, b.cy, b.cz), f3(b.ex, b.ey, b.ez), {}};
         const gyro::vec3 axes[3] = {f3(b.u0x, b.u0y, b.u0z), f3(b.u1x, b.u1y, b.u1z), f3(b.u2x, b.u2y, b.u2z)};
         for (int r = 0; r < 3; ++r) obb.orientation.m[r][0] = axes[r].x, obb.orientation.m[r][1] = axes[r].y, obb.orientation.m[r][2] = axes[r].z;
-        GYRO_TRY(gyro::query(scene->scene, obb, ids));
+        GYRO_TRY(gyro::query(scene->scene, obb, ids, mask));
         break;
       }
       default: return fail(Status::invalid_argument, "shape->type = %u: queries take a sphere, AABB or OBB", shape->type);
@@ -254,28 +254,39 @@ GYRO_API gyro_status gyro_scene_query(const gyro_scene* scene, const gyro_shape_
   });
 }
 
-GYRO_API gyro_status gyro_scene_query_frustum(const gyro_scene* scene, const gyro_frustum* frustum, gyro_model_id* out,
-                                              int32_t capacity, int32_t* count) {
+GYRO_API gyro_status gyro_scene_query(const gyro_scene* scene, const gyro_shape_soa* shape, gyro_model_id* out,
+                                      int32_t capacity, int32_t* count) {
+  return gyro_scene_query_masked(scene, shape, 0xFFFFFFFFu, out, capacity, count);
+}
+
+GYRO_API gyro_status gyro_scene_query_frustum_masked(const gyro_scene* scene, const gyro_frustum* frustum, uint32_t mask,
+                                                     gyro_model_id* out, int32_t capacity, int32_t* count) {
   return guarded([&]() -> Status {
     GYRO_TRY(require(scene, "scene"));
     GYRO_TRY(require(frustum, "frustum"));
     GYRO_TRY(check_query_out(out, capacity, count));
     const gyro::Frustum f = gyro::capi::frustum_of(*frustum);
     std::vector<gyro::ModelId> ids;
-    GYRO_TRY(gyro::query(scene->scene, f, ids));
+    GYRO_TRY(gyro::query(scene->scene, f, ids, mask));
     return write_ids(ids, out, capacity, count);
   });
 }
 
-GYRO_API gyro_status gyro_scene_pick(const gyro_scene* scene, const gyro_camera* camera, float screen_x, float screen_y,
-                                     float viewport_width, float viewport_height, gyro_scene_hit* out) {
+GYRO_API gyro_status gyro_scene_query_frustum(const gyro_scene* scene, const gyro_frustum* frustum, gyro_model_id* out,
+                                              int32_t capacity, int32_t* count) {
+  return gyro_scene_query_frustum_masked(scene, frustum, 0xFFFFFFFFu, out, capacity, count);
+}
+
+GYRO_API gyro_status gyro_scene_pick_masked(const gyro_scene* scene, const gyro_camera* camera, float screen_x,
+                                            float screen_y, float viewport_width, float viewport_height, uint32_t mask,
+                                            gyro_scene_hit* out) {
   return guarded([&]() -> Status {
     GYRO_TRY(require(scene, "scene"));
     GYRO_TRY(require(out, "out"));
     gyro::Camera cam;
     GYRO_TRY(gyro::capi::camera_of(camera, cam));
     gyro::SceneHit h;
-    GYRO_TRY(gyro::pick(scene->scene, cam, {screen_x, screen_y}, {viewport_width, viewport_height}, &h));
+    GYRO_TRY(gyro::pick(scene->scene, cam, {screen_x, screen_y}, {viewport_width, viewport_height}, &h, mask));
     gyro_scene_hit c;
     std::memset(&c, 0, sizeof c);
     if (h.hit.hit) {
@@ -287,6 +298,11 @@ GYRO_API gyro_status gyro_scene_pick(const gyro_scene* scene, const gyro_camera*
     *out = c;
     return Status::ok;
   });
+}
+
+GYRO_API gyro_status gyro_scene_pick(const gyro_scene* scene, const gyro_camera* camera, float screen_x, float screen_y,
+                                     float viewport_width, float viewport_height, gyro_scene_hit* out) {
+  return gyro_scene_pick_masked(scene, camera, screen_x, screen_y, viewport_width, viewport_height, 0xFFFFFFFFu, out);
 }
 
 }  // extern "C"

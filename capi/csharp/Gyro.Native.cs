@@ -965,7 +965,7 @@ namespace Gyro.Native
         [DllImport(Library, CallingConvention = Cdecl)] public static extern Status gyro_scene_remove_model(SceneHandle scene, ModelId id);
         [DllImport(Library, CallingConvention = Cdecl)] public static extern Status gyro_scene_set_transform(SceneHandle scene, ModelId id, Transform* local);
         [DllImport(Library, CallingConvention = Cdecl)] public static extern Status gyro_scene_set_parent(SceneHandle scene, ModelId id, ModelId parent);
-        [DllImport(Library, CallingConvention = Cdecl)] public static extern Status gyro_scene_set_ray_mask(SceneHandle scene, ModelId id, uint ray_mask);
+        [DllImport(Library, CallingConvention = Cdecl)] public static extern Status gyro_scene_set_layers(SceneHandle scene, ModelId id, uint layers);
         [DllImport(Library, CallingConvention = Cdecl)] public static extern int gyro_scene_model_count(SceneHandle scene);
         [DllImport(Library, CallingConvention = Cdecl)] public static extern Status gyro_scene_raycast_closest(SceneHandle scene, RaySoa* rays, int ray_count, SceneHitSoa* hits);
         [DllImport(Library, CallingConvention = Cdecl)] public static extern Status gyro_scene_raycast_any(SceneHandle scene, RaySoa* rays, int ray_count, SceneHitSoa* hits);
@@ -974,6 +974,9 @@ namespace Gyro.Native
         [DllImport(Library, CallingConvention = Cdecl)] public static extern Status gyro_scene_query(SceneHandle scene, ShapeSoa* shape, ModelId* @out, int capacity, int* count);
         [DllImport(Library, CallingConvention = Cdecl)] public static extern Status gyro_scene_query_frustum(SceneHandle scene, Frustum* frustum, ModelId* @out, int capacity, int* count);
         [DllImport(Library, CallingConvention = Cdecl)] public static extern Status gyro_scene_pick(SceneHandle scene, Camera* camera, float screen_x, float screen_y, float viewport_width, float viewport_height, SceneHit* @out);
+        [DllImport(Library, CallingConvention = Cdecl)] public static extern Status gyro_scene_query_masked(SceneHandle scene, ShapeSoa* shape, uint mask, ModelId* @out, int capacity, int* count);
+        [DllImport(Library, CallingConvention = Cdecl)] public static extern Status gyro_scene_query_frustum_masked(SceneHandle scene, Frustum* frustum, uint mask, ModelId* @out, int capacity, int* count);
+        [DllImport(Library, CallingConvention = Cdecl)] public static extern Status gyro_scene_pick_masked(SceneHandle scene, Camera* camera, float screen_x, float screen_y, float viewport_width, float viewport_height, uint mask, SceneHit* @out);
 
         // world and rigid bodies
         [DllImport(Library, CallingConvention = Cdecl)] public static extern WorldDef gyro_world_def_default();

@@ -561,8 +561,8 @@ namespace Gyro
         public void RemoveModel(ModelId id) { Check.Ok(N.gyro_scene_remove_model(Handle, id), "gyro_scene_remove_model"); }
         public void SetTransform(ModelId id, Transform local) { Check.Ok(N.gyro_scene_set_transform(Handle, id, &local), "gyro_scene_set_transform"); }
         public void SetParent(ModelId id, ModelId parent) { Check.Ok(N.gyro_scene_set_parent(Handle, id, parent), "gyro_scene_set_parent"); }
-        /// <summary>The ray layers the model is in (all 32 to start with): a masked ray passes through a model whose mask shares no bit with its own.</summary>
-        public void SetRayMask(ModelId id, uint rayMask) { Check.Ok(N.gyro_scene_set_ray_mask(Handle, id, rayMask), "gyro_scene_set_ray_mask"); }
+        /// <summary>The layers the model is in (all 32 to start with): masked rays, queries and picks see it only through a shared bit.</summary>
+        public void SetLayers(ModelId id, uint layers) { Check.Ok(N.gyro_scene_set_layers(Handle, id, layers), "gyro_scene_set_layers"); }
         public int ModelCount => N.gyro_scene_model_count(Handle);
 
         /// <summary>Closest hit of every ray (the brute-force answer over every model). With masks, ray i sees only the models whose ray mask shares a bit with masks[i].</summary>
@@ -592,50 +592,50 @@ namespace Gyro
             }
         }
 
-        /// <summary>Models overlapping a sphere, ascending ids.</summary>
-        public ModelId[] QuerySphere(Vec3 center, float radius)
+        /// <summary>Models overlapping a sphere, ascending ids; only those whose layers share a bit with mask (as every query).</summary>
+        public ModelId[] QuerySphere(Vec3 center, float radius, uint mask = 0xFFFFFFFFu)
         {
             float cx = center.X, cy = center.Y, cz = center.Z, r = radius;
             ShapeSoa s = default(ShapeSoa);
             s.Type = ShapeType.Sphere;
             s.As.Sphere.Cx = &cx; s.As.Sphere.Cy = &cy; s.As.Sphere.Cz = &cz; s.As.Sphere.R = &r;
-            return Query(&s, null);
+            return Query(&s, null, mask);
         }
 
         /// <summary>Models overlapping an axis-aligned box, ascending ids.</summary>
-        public ModelId[] QueryAabb(Vec3 center, Vec3 halfExtents)
+        public ModelId[] QueryAabb(Vec3 center, Vec3 halfExtents, uint mask = 0xFFFFFFFFu)
         {
             float cx = center.X, cy = center.Y, cz = center.Z, ex = halfExtents.X, ey = halfExtents.Y, ez = halfExtents.Z;
             ShapeSoa s = default(ShapeSoa);
             s.Type = ShapeType.Aabb;
             s.As.Aabb.Cx = &cx; s.As.Aabb.Cy = &cy; s.As.Aabb.Cz = &cz; s.As.Aabb.Ex = &ex; s.As.Aabb.Ey = &ey; s.As.Aabb.Ez = &ez;
-            return Query(&s, null);
+            return Query(&s, null, mask);
         }
 
         /// <summary>Models whose bounding volume intersects the frustum, ascending ids.</summary>
-        public ModelId[] QueryFrustum(Frustum frustum) { return Query(null, &frustum); }
+        public ModelId[] QueryFrustum(Frustum frustum, uint mask = 0xFFFFFFFFu) { return Query(null, &frustum, mask); }
 
-        ModelId[] Query(ShapeSoa* shape, Frustum* frustum)
+        ModelId[] Query(ShapeSoa* shape, Frustum* frustum, uint mask)
         {
             // Ask for the count, then fetch; a scene cannot change in between (one thread per scene).
             int count = 0;
-            if (shape != null) Check.Ok(N.gyro_scene_query(Handle, shape, null, 0, &count), "gyro_scene_query");
-            else Check.Ok(N.gyro_scene_query_frustum(Handle, frustum, null, 0, &count), "gyro_scene_query_frustum");
+            if (shape != null) Check.Ok(N.gyro_scene_query_masked(Handle, shape, mask, null, 0, &count), "gyro_scene_query_masked");
+            else Check.Ok(N.gyro_scene_query_frustum_masked(Handle, frustum, mask, null, 0, &count), "gyro_scene_query_frustum_masked");
             ModelId[] ids = new ModelId[count];
             if (count == 0) return ids;
             fixed (ModelId* p = ids)
             {
-                if (shape != null) Check.Ok(N.gyro_scene_query(Handle, shape, p, count, &count), "gyro_scene_query");
-                else Check.Ok(N.gyro_scene_query_frustum(Handle, frustum, p, count, &count), "gyro_scene_query_frustum");
+                if (shape != null) Check.Ok(N.gyro_scene_query_masked(Handle, shape, mask, p, count, &count), "gyro_scene_query_masked");
+                else Check.Ok(N.gyro_scene_query_frustum_masked(Handle, frustum, mask, p, count, &count), "gyro_scene_query_frustum_masked");
             }
             return ids;
         }
 
-        /// <summary>The closest model under a screen point; Hit == 0 when there is none.</summary>
-        public SceneHit Pick(Camera camera, float screenX, float screenY, float viewportWidth, float viewportHeight)
+        /// <summary>The closest model under a screen point among those whose layers share a bit with mask; Hit == 0 when there is none.</summary>
+        public SceneHit Pick(Camera camera, float screenX, float screenY, float viewportWidth, float viewportHeight, uint mask = 0xFFFFFFFFu)
         {
             SceneHit h;
-            Check.Ok(N.gyro_scene_pick(Handle, &camera, screenX, screenY, viewportWidth, viewportHeight, &h), "gyro_scene_pick");
+            Check.Ok(N.gyro_scene_pick_masked(Handle, &camera, screenX, screenY, viewportWidth, viewportHeight, mask, &h), "gyro_scene_pick_masked");
             return h;
         }
 

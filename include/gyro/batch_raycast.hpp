@@ -19,12 +19,12 @@
 
 namespace gyro {
 
-/// Every ray layer: the default of a ray's mask and of a scene model's ray_mask.
-inline constexpr uint32_t kAllRayLayers = 0xFFFFFFFFu;
+/// Every layer: the default of a ray's or a query's mask and of a scene model's layers.
+inline constexpr uint32_t kAllLayers = 0xFFFFFFFFu;
 
 /// Rays. tmin and tmax may be null, meaning 0 and +infinity for every ray. mask may be null,
-/// meaning kAllRayLayers for every ray: in a Scene, ray i sees only the models whose
-/// ModelDef::ray_mask shares a bit with mask[i] (Embree's ray and geometry masks). Queries
+/// meaning kAllLayers for every ray: in a Scene, ray i sees only the models whose
+/// ModelDef::layers share a bit with mask[i] (Embree's ray and geometry masks). Queries
 /// over primitives without masks (shape arrays, a TriangleMesh) ignore it.
 struct RaysView {
   const float* ox = nullptr;

@@ -111,10 +111,10 @@ struct ModelDef {
   std::shared_ptr<const TriangleMesh> mesh;   ///< mesh: created (not empty); shared, never copied
   ModelTransform transform;                   ///< relative to the parent (the world for a root)
   ModelId parent;                             ///< null: a root
-  /// The ray layers the model is in: a ray whose mask (RaysView::mask) shares no bit with
-  /// it passes through. 0 hides the model from every ray; the overlap and frustum queries
-  /// ignore it. Any value is valid.
-  uint32_t ray_mask = kAllRayLayers;
+  /// The layers the model is in (as Box2D's category bits, Embree's geometry mask): a ray
+  /// (RaysView::mask), a query or a pick whose mask shares no bit with them does not see
+  /// the model. 0 hides it from all of them. Any value is valid.
+  uint32_t layers = kAllLayers;
 };
 
 /// A model as the scene holds it, with its world placement.
@@ -228,9 +228,9 @@ class Scene {
   /// model moves with its new parent. A parent that is the model or one of its descendants
   /// is invalid_argument.
   Status set_parent(ModelId id, ModelId parent);
-  /// Sets the model's ModelDef::ray_mask. Not a structural change: the next query rewrites
+  /// Sets the model's ModelDef::layers. Not a structural change: the next query rewrites
   /// the masks the tree's leaves hold, and neither rebuilds nor refits the tree.
-  Status set_ray_mask(ModelId id, uint32_t ray_mask);
+  Status set_layers(ModelId id, uint32_t layers);
 
   /// True for a live id.
   bool contains(ModelId id) const;
@@ -265,17 +265,17 @@ struct SceneHit {
   float u = 0.0f, v = 0.0f;  ///< mesh models: barycentric weights of corners b and c
 };
 
-/// Closest hit with t in [tmin, tmax] among the models whose ray_mask shares a bit with
-/// `mask` (see the header comment). A ray the mesh queries call
+/// Closest hit with t in [tmin, tmax] among the models whose layers share a bit with `mask`
+/// (see the header comment). A ray the mesh queries call
 /// invalid (a NaN or infinite coordinate, a zero direction, tmin not finite or negative,
 /// tmax NaN or below tmin) hits nothing.
 SceneHit raycast(const Scene& scene, const Ray& ray, float tmin = 0.0f, float tmax = __builtin_inff(),
-                 uint32_t mask = kAllRayLayers);
+                 uint32_t mask = kAllLayers);
 /// Some hit with t in [tmin, tmax] (stops at the first found: planes first in id order,
 /// then the tree's traversal order); hit.hit exactly when raycast() hits. The model
 /// reported may differ between the acceleration modes, never between runs.
 SceneHit raycast_any(const Scene& scene, const Ray& ray, float tmin = 0.0f, float tmax = __builtin_inff(),
-                     uint32_t mask = kAllRayLayers);
+                     uint32_t mask = kAllLayers);
 
 /// Per-ray results of the batch raycasts: t and model are required, the rest optional
 /// (null to skip; the normal all three or none, u and v both or none). A miss writes
@@ -301,18 +301,20 @@ Status raycast_closest(const Scene& scene, const RaysView& rays, std::size_t ray
 /// Batch any hit: raycast_any() for every ray; as raycast_closest.
 Status raycast_any(const Scene& scene, const RaysView& rays, std::size_t ray_count, const SceneHitsOut& hits);
 
-/// Models whose shape overlaps the sphere, ascending.
-Status query(const Scene& scene, const Sphere& sphere, std::vector<ModelId>& out);
+/// Models whose shape overlaps the sphere, ascending; only those whose layers share a bit
+/// with `mask` (ModelDef::layers), as for every query below.
+Status query(const Scene& scene, const Sphere& sphere, std::vector<ModelId>& out, uint32_t mask = kAllLayers);
 /// Models whose shape overlaps the box, ascending.
-Status query(const Scene& scene, const AABB& box, std::vector<ModelId>& out);
+Status query(const Scene& scene, const AABB& box, std::vector<ModelId>& out, uint32_t mask = kAllLayers);
 /// Models whose shape overlaps the oriented box, ascending.
-Status query(const Scene& scene, const OBB& box, std::vector<ModelId>& out);
+Status query(const Scene& scene, const OBB& box, std::vector<ModelId>& out, uint32_t mask = kAllLayers);
 /// Models whose bounding volume intersects the frustum (see the header comment), ascending.
-Status query(const Scene& scene, const Frustum& frustum, std::vector<ModelId>& out);
+Status query(const Scene& scene, const Frustum& frustum, std::vector<ModelId>& out, uint32_t mask = kAllLayers);
 
 /// The closest model under a screen point: raycast(scene, picking_ray(camera, screen_point,
 /// viewport_size)). A bad camera (check_camera) or a non-finite point or a viewport with a
 /// size <= 0 returns its status and leaves *out a miss.
-Status pick(const Scene& scene, const Camera& camera, vec2 screen_point, vec2 viewport_size, SceneHit* out);
+Status pick(const Scene& scene, const Camera& camera, vec2 screen_point, vec2 viewport_size, SceneHit* out,
+            uint32_t mask = kAllLayers);
 
 }  // namespace gyro

@@ -329,7 +329,7 @@ struct Scene::Impl {
   std::vector<detail::SceneLeaf> ray_leaves;  // bvh.leaves as the ray kernel reads them
   std::vector<detail::SceneBox> ray_boxes;    // their box models
   bool rays_large = false;                     // beyond kFetchBytes (RayPrefetch::automatic)
-  bool masks_changed = false;                  // a ray_mask set since the leaves were written
+  bool masks_changed = false;                  // a model's layers set since the leaves were written
   Octree octree;
   SceneAccel built = SceneAccel::bvh;
   std::mutex mutex;
@@ -635,7 +635,7 @@ struct Scene::Impl {
     r.sphere[1] = sphere ? p->box.center.y : nan;
     r.sphere[2] = sphere ? p->box.center.z : nan;
     r.sphere[3] = sphere ? p->box.half_extents.x : nan;
-    r.ray_mask = p ? defs[tree_slots[item]].ray_mask : 0u;
+    r.layers = p ? defs[tree_slots[item]].layers : 0u;
     r.box_block = p && !sphere && p->shape != ModelShape::box ? detail::kExactLeaf : detail::kNoItem;
     if (p && p->shape == ModelShape::box) {
       const OBB& b = p->box;
@@ -667,11 +667,11 @@ struct Scene::Impl {
     if (tree_stale) build_tree();
     tree_stale = false;
     if (masks_changed) {
-      // set_ray_mask() changes what the leaves hold, not the tree: a build has written the
+      // set_layers() changes what the leaves hold, not the tree: a build has written the
       // new masks already, a refit has not.
       for (std::size_t l = 0; l < ray_leaves.size(); ++l) {
         const uint32_t item = bvh.leaves[l].item[0];
-        ray_leaves[l].ray_mask = item == detail::kNoItem ? 0u : defs[tree_slots[item]].ray_mask;
+        ray_leaves[l].layers = item == detail::kNoItem ? 0u : defs[tree_slots[item]].layers;
       }
       masks_changed = false;
     }
@@ -794,12 +794,12 @@ Status Scene::set_transform(ModelId id, const ModelTransform& local) {
   return Status::ok;
 }
 
-Status Scene::set_ray_mask(ModelId id, uint32_t ray_mask) {
+Status Scene::set_layers(ModelId id, uint32_t layers) {
   Impl& m = *impl_;
   const uint32_t s = m.slot(id);
   if (s == detail::IdPool::kNoSlot) return fail(Status::stale_id, "model {%u, %u} is not live", id.index, id.generation);
-  if (m.defs[s].ray_mask == ray_mask) return Status::ok;
-  m.defs[s].ray_mask = ray_mask;
+  if (m.defs[s].layers == layers) return Status::ok;
+  m.defs[s].layers = layers;
   m.masks_changed = true;
   m.tree_ready.store(false, std::memory_order_relaxed);  // the leaves' masks, not the world or the tree
   return Status::ok;
@@ -929,7 +929,7 @@ class RayWalk {
   // The planes' best (any hit: the first in id order).
   const SceneHit& planes() {
     for (uint32_t s : m_.plane_slots) {
-      if ((m_.defs[s].ray_mask & mask_) == 0) continue;  // a layer the ray does not see
+      if ((m_.defs[s].layers & mask_) == 0) continue;  // a layer the ray does not see
       test(s);
       if (any_ && found()) break;
     }
@@ -1038,7 +1038,7 @@ struct Block {
   }
   float tmin(std::size_t k) const { return rays->tmin ? rays->tmin[begin + k] : 0.0f; }
   float tmax(std::size_t k) const { return rays->tmax ? rays->tmax[begin + k] : kInf; }
-  uint32_t mask(std::size_t k) const { return rays->mask ? rays->mask[begin + k] : kAllRayLayers; }
+  uint32_t mask(std::size_t k) const { return rays->mask ? rays->mask[begin + k] : kAllLayers; }
   RayWalk walker(std::size_t k) const { return RayWalk(*m, ray(k), tmin(k), tmax(k), any, mask(k)); }
 };
 
@@ -1182,14 +1182,16 @@ namespace {
 // Candidates from the tree (box_ok on node boxes), every plane, then the exact test;
 // ids ascending, each once.
 template <class BoxOk, class Exact>
-void collect(const Scene& scene, BoxOk&& box_ok, Exact&& exact, std::vector<ModelId>& out) {
+void collect(const Scene& scene, uint32_t mask, BoxOk&& box_ok, Exact&& exact, std::vector<ModelId>& out) {
   scene.prepare();
   const Scene::Impl& m = *scene.impl();
   std::vector<uint32_t> slots;
+  // A model in none of the query's layers is skipped before its exact test.
+  const auto wanted = [&](uint32_t s) { return (m.defs[s].layers & mask) != 0 && exact(m.placed[s]); };
   for (uint32_t s : m.plane_slots)
-    if (exact(m.placed[s])) slots.push_back(s);
+    if (wanted(s)) slots.push_back(s);
   m.walk(box_ok, [&](uint32_t s) {
-    if (exact(m.placed[s])) slots.push_back(s);
+    if (wanted(s)) slots.push_back(s);
   });
   std::sort(slots.begin(), slots.end());
   slots.erase(std::unique(slots.begin(), slots.end()), slots.end());
@@ -1220,10 +1222,11 @@ template <class Shape> bool model_overlaps(const Shape& q, const Placed& p) {
   return false;
 }
 
-template <class Shape> Status query_shape(const Scene& scene, const Shape& q, const Region& r, std::vector<ModelId>& out) {
+template <class Shape>
+Status query_shape(const Scene& scene, const Shape& q, const Region& r, uint32_t mask, std::vector<ModelId>& out) {
   detail::FloatEnvGuard env;
   collect(
-      scene, [&](const float lo[3], const float hi[3]) { return region_touches(r, lo, hi); },
+      scene, mask, [&](const float lo[3], const float hi[3]) { return region_touches(r, lo, hi); },
       [&](const Placed& p) { return model_overlaps(q, p); }, out);
   return Status::ok;
 }
@@ -1247,33 +1250,33 @@ bool plane_touches(const Frustum& f, const Plane& p) {
 
 }  // namespace
 
-Status query(const Scene& scene, const Sphere& q, std::vector<ModelId>& out) {
+Status query(const Scene& scene, const Sphere& q, std::vector<ModelId>& out, uint32_t mask) {
   out.clear();
   if (!gyro::is_finite(q.center) || !detail::is_finite(q.radius)) return fail(Status::non_finite, "sphere is not finite");
   if (!(q.radius >= 0.0f)) return fail(Status::invalid_argument, "sphere radius %g is negative", double(q.radius));
-  return query_shape(scene, q, region_of(q.center, {q.radius, q.radius, q.radius}), out);
+  return query_shape(scene, q, region_of(q.center, {q.radius, q.radius, q.radius}), mask, out);
 }
 
-Status query(const Scene& scene, const AABB& q, std::vector<ModelId>& out) {
+Status query(const Scene& scene, const AABB& q, std::vector<ModelId>& out, uint32_t mask) {
   out.clear();
   if (!gyro::is_finite(q.center) || !gyro::is_finite(q.half_extents)) return fail(Status::non_finite, "box is not finite");
   if (!(q.half_extents.x >= 0.0f && q.half_extents.y >= 0.0f && q.half_extents.z >= 0.0f))
     return fail(Status::invalid_argument, "box has a negative half extent");
-  return query_shape(scene, q, region_of(q.center, q.half_extents), out);
+  return query_shape(scene, q, region_of(q.center, q.half_extents), mask, out);
 }
 
-Status query(const Scene& scene, const OBB& q, std::vector<ModelId>& out) {
+Status query(const Scene& scene, const OBB& q, std::vector<ModelId>& out, uint32_t mask) {
   out.clear();
   GYRO_TRY(check_obb(q));
-  return query_shape(scene, q, region_of(q.center, aabb_half_extents(q.orientation, q.half_extents)), out);
+  return query_shape(scene, q, region_of(q.center, aabb_half_extents(q.orientation, q.half_extents)), mask, out);
 }
 
-Status query(const Scene& scene, const Frustum& f, std::vector<ModelId>& out) {
+Status query(const Scene& scene, const Frustum& f, std::vector<ModelId>& out, uint32_t mask) {
   out.clear();
   GYRO_TRY(detail::check_frustum(f, "frustum"));
   detail::FloatEnvGuard env;
   collect(
-      scene, [&](const float lo[3], const float hi[3]) { return detail::frustum_may_touch(f, lo, hi); },
+      scene, mask, [&](const float lo[3], const float hi[3]) { return detail::frustum_may_touch(f, lo, hi); },
       [&](const Placed& p) {
         switch (p.shape) {
           case ModelShape::sphere: return intersects(f, p.sphere());
@@ -1287,7 +1290,8 @@ Status query(const Scene& scene, const Frustum& f, std::vector<ModelId>& out) {
   return Status::ok;
 }
 
-Status pick(const Scene& scene, const Camera& camera, vec2 screen_point, vec2 viewport_size, SceneHit* out) {
+Status pick(const Scene& scene, const Camera& camera, vec2 screen_point, vec2 viewport_size, SceneHit* out,
+            uint32_t mask) {
   GYRO_TRY(detail::require_not_null(out, "out"));
   *out = SceneHit{};
   GYRO_TRY(check_camera(camera));
@@ -1297,7 +1301,7 @@ Status pick(const Scene& scene, const Camera& camera, vec2 screen_point, vec2 vi
   if (!(viewport_size.x > 0.0f && viewport_size.y > 0.0f))
     return fail(Status::invalid_argument, "pick: viewport size (%g, %g) must be > 0", double(viewport_size.x),
                 double(viewport_size.y));
-  *out = raycast(scene, picking_ray(camera, screen_point, viewport_size));
+  *out = raycast(scene, picking_ray(camera, screen_point, viewport_size), 0.0f, kInf, mask);
   return Status::ok;
 }
 

@@ -170,7 +170,7 @@ template <bool Fetch> inline bool next_entry(const SceneRaycastArgs& a, Walk& w)
 // found its hit (the walk is over). One model, tested by the scalar raycast's expressions
 // (lanes.hpp: a lane computes what a float does, so the bits are the same).
 template <bool AnyHit> inline bool visit_leaf(const SceneRaycastArgs& a, Walk& w, const SceneLeaf& leaf) {
-  if ((leaf.ray_mask & w.mask) == 0) return false;  // a layer the ray does not see
+  if ((leaf.layers & w.mask) == 0) return false;  // a layer the ray does not see
   float t;
   if (leaf.box_block == detail::kExactLeaf) {
     t = a.exact(a.ctx, w.ray, leaf.item, w.best_t, w.best_key, limit_of(w, AnyHit));

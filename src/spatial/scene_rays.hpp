@@ -20,7 +20,7 @@ struct alignas(32) SceneLeaf {
   float sphere[4];     ///< cx, cy, cz, r; r is NaN where the model is not a sphere (no ray hits it)
   uint32_t key;        ///< the model's id index (the tie-break), kNoItem where there is none
   uint32_t item;       ///< the tree item, kNoItem where there is none
-  uint32_t ray_mask;   ///< the model's ModelDef::ray_mask (0 where there is none)
+  uint32_t layers;   ///< the model's ModelDef::layers (0 where there is none)
   /// Index of the model's SceneBox; kExactLeaf: the exact callback tests the model (a mesh);
   /// kNoItem: neither (a sphere, or no model).
   uint32_t box_block;
@@ -52,7 +52,7 @@ struct SceneRaycastArgs {
   const float* tmax;      ///< null: +inf
   const float* pad;       ///< per ray: how far every box is widened (the scene's ray pad)
   const uint8_t* walk;    ///< per ray: 0 = leave it (invalid, or already answered)
-  const uint32_t* mask;   ///< per ray: the layers it sees (SceneLeaf::ray_mask); null: all
+  const uint32_t* mask;   ///< per ray: the layers it sees (SceneLeaf::layers); null: all
   bool any_hit;
   /// The tree is large enough that prefetching each next visit pays for its instructions
   /// (rays take turns, scene_kernels.cpp; it changes no answer).

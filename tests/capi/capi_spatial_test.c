@@ -215,13 +215,13 @@ static void test_scene(gyro_scene_accel accel) {
     CHECK(t[1] == 4.0f && model[1].index == box.index && t[3] == 2.0f && model[3].index == plane.index);
   }
 
-  /* ray layers (ABI 1.9): each model in its own layer; a ray sees a model only through a
+  /* layers (ABI 1.9): each model in its own layer; a ray sees a model only through a
      shared bit, whatever its shape (the plane and the mesh's exact test included) */
   {
     const uint32_t seen[5] = {1, 2, 4, 8, 0xFFFFFFFFu}, unseen[5] = {2, 4, 8, 1, 0};
-    CHECK(gyro_scene_set_ray_mask(NULL, sphere, 1) == GYRO_STATUS_NULL_ARGUMENT);
-    CHECK(gyro_scene_set_ray_mask(scene, sphere, 1) == GYRO_OK && gyro_scene_set_ray_mask(scene, box, 2) == GYRO_OK);
-    CHECK(gyro_scene_set_ray_mask(scene, inst, 4) == GYRO_OK && gyro_scene_set_ray_mask(scene, plane, 8) == GYRO_OK);
+    CHECK(gyro_scene_set_layers(NULL, sphere, 1) == GYRO_STATUS_NULL_ARGUMENT);
+    CHECK(gyro_scene_set_layers(scene, sphere, 1) == GYRO_OK && gyro_scene_set_layers(scene, box, 2) == GYRO_OK);
+    CHECK(gyro_scene_set_layers(scene, inst, 4) == GYRO_OK && gyro_scene_set_layers(scene, plane, 8) == GYRO_OK);
     CHECK(gyro_scene_raycast_closest_masked(scene, &rays, seen, 5, &hits) == GYRO_OK);
     CHECK(t[0] == 4.0f && model[0].index == sphere.index && t[1] == 4.0f && model[1].index == box.index);
     CHECK(t[2] == 4.5f && model[2].index == inst.index && t[3] == 2.0f && model[3].index == plane.index);
@@ -235,8 +235,24 @@ static void test_scene(gyro_scene_accel accel) {
     CHECK(gyro_scene_raycast_closest(scene, &rays, 5, &hits) == GYRO_OK && model[0].index == sphere.index);
     CHECK(gyro_scene_raycast_closest_masked(scene, &rays, NULL, 5, &hits) == GYRO_OK && model[2].index == inst.index);
     CHECK(gyro_scene_raycast_closest_masked(NULL, &rays, seen, 5, &hits) == GYRO_STATUS_NULL_ARGUMENT);
+    /* queries and picks of a mask see the models of its layers only */
+    query.type = GYRO_SHAPE_SPHERE, query.reserved = 0;
+    query.as.sphere.cx = &cx, query.as.sphere.cy = &cy, query.as.sphere.cz = &cz, query.as.sphere.r = &r;
+    cx = 0.5f, r = 1.6f; /* the sphere and the box */
+    CHECK(gyro_scene_query_masked(scene, &query, 2, ids, 8, &count) == GYRO_OK && count == 1 && ids[0].index == box.index);
+    CHECK(gyro_scene_query_masked(scene, &query, 4 | 8, ids, 8, &count) == GYRO_OK && count == 0);
+    CHECK(gyro_scene_query_masked(scene, &query, 3, ids, 8, &count) == GYRO_OK && count == 2);
+    CHECK(gyro_scene_query_masked(NULL, &query, 3, ids, 8, &count) == GYRO_STATUS_NULL_ARGUMENT);
+    CHECK(gyro_camera_frustum(&cam, &fr) == GYRO_OK);
+    CHECK(gyro_scene_query_frustum_masked(scene, &fr, 8, ids, 8, &count) == GYRO_OK && count == 1 &&
+          ids[0].index == plane.index);
+    CHECK(gyro_scene_pick_masked(scene, &cam, 320, 240, 640, 480, 2 | 4 | 8, &picked) == GYRO_OK &&
+          (picked.hit == 0 || picked.model.index != sphere.index));
+    CHECK(gyro_scene_pick_masked(scene, &cam, 320, 240, 640, 480, 1, &picked) == GYRO_OK && picked.hit == 1 &&
+          picked.model.index == sphere.index);
+    cx = 0.0f, r = 1.5f;
     for (gyro_model_id m4[4] = {sphere, box, inst, plane}, *p = m4; p < m4 + 4; ++p)
-      CHECK(gyro_scene_set_ray_mask(scene, *p, 0xFFFFFFFFu) == GYRO_OK);
+      CHECK(gyro_scene_set_layers(scene, *p, 0xFFFFFFFFu) == GYRO_OK);
   }
 
   /* queries */
@@ -261,7 +277,7 @@ static void test_scene(gyro_scene_accel accel) {
   CHECK(gyro_scene_remove_model(scene, sphere) == GYRO_OK);
   CHECK(gyro_scene_remove_model(scene, sphere) == GYRO_STATUS_STALE_ID);
   CHECK(gyro_scene_set_transform(scene, sphere, &tr) == GYRO_STATUS_STALE_ID);
-  CHECK(gyro_scene_set_ray_mask(scene, sphere, 1) == GYRO_STATUS_STALE_ID);
+  CHECK(gyro_scene_set_layers(scene, sphere, 1) == GYRO_STATUS_STALE_ID);
   CHECK(gyro_scene_raycast_closest(scene, &rays, 1, &hits) == GYRO_OK && prim[0] == -1 && t[0] == INFINITY);
   CHECK(gyro_scene_model_count(scene) == 3);
   gyro_scene_destroy(scene);

@@ -1632,9 +1632,9 @@ void op_scene(State& st) {
     return;
   }
   if (what == 5) {
-    if (in.flag(3)) {  // ray layers (ABI 1.9): any mask is valid
-      checked(gyro_scene_set_ray_mask(in.flag(12) ? nullptr : s, id, in.u32()), "gyro_scene_set_ray_mask");
-      if (gyro_scene_model_count(s) != before) die("gyro_scene_set_ray_mask changed the model count");
+    if (in.flag(3)) {  // layers (ABI 1.9): any value is valid
+      checked(gyro_scene_set_layers(in.flag(12) ? nullptr : s, id, in.u32()), "gyro_scene_set_layers");
+      if (gyro_scene_model_count(s) != before) die("gyro_scene_set_layers changed the model count");
       return;
     }
     const gyro_model_id parent = pick_model(st, slot);

@@ -810,8 +810,8 @@ TEST(Scene, QueriesEqualBruteForceInBothModes) {
   EXPECT_GT(found, 1000u);
 }
 
-// Ray layers (ModelDef::ray_mask, RaysView::mask): every path's answer is the brute force
-// over the models sharing a bit with the ray's mask. Masks set at add and by set_ray_mask
+// Layers (ModelDef::layers, RaysView::mask, the queries' and pick's masks): every path's answer is the brute force
+// over the models sharing a bit with the ray's mask. Masks set at add and by set_layers
 // (with moves, so a refit and a rebuild rewrite the leaves too), both structures, every
 // level, 1 and 3 threads, single rays and batches, closest and any hits.
 std::vector<SceneHit> brute_masked(const Scene& scene, const Rays& rays, const std::vector<uint32_t>& masks,
@@ -821,7 +821,7 @@ std::vector<SceneHit> brute_masked(const Scene& scene, const Rays& rays, const s
   for (std::size_t i = 0; i < expect.size(); ++i) {
     std::vector<Snapshot> seen;
     for (const Snapshot& m : models)
-      if ((m.info.def.ray_mask & masks[i]) != 0) seen.push_back(m);
+      if ((m.info.def.layers & masks[i]) != 0) seen.push_back(m);
     expect[i] = brute_closest(seen, rays.ray(i), rays.tmin[i], rays.tmax[i]);
     *hits += expect[i].hit.hit;
     // A ray the masks changed: what it would hit seeing every layer is hidden from it.
@@ -855,23 +855,23 @@ void expect_masked_raycasts(Scene& scene, const Rays& rays, const std::vector<ui
         // The model an any hit names is one the ray sees.
         const auto it = std::find_if(models.begin(), models.end(), [&](const Snapshot& m) { return m.id == a.model[i]; });
         ASSERT_NE(it, models.end());
-        EXPECT_NE(it->info.def.ray_mask & masks[i], 0u) << "ray " << i;
+        EXPECT_NE(it->info.def.layers & masks[i], 0u) << "ray " << i;
       }
     }
 }
 
-TEST(Scene, RayMasksHideModelsFromRaysOfOtherLayers) {
+TEST(Scene, LayersHideModelsFromRaysQueriesAndPicksOfOtherLayers) {
   TestScene s(0, 81);
   SplitMix64 rng(82);
-  const uint32_t layers[7] = {1u, 2u, 4u, 8u, 6u, 0u, kAllRayLayers};
+  const uint32_t layers[7] = {1u, 2u, 4u, 8u, 6u, 0u, kAllLayers};
   for (int i = 0; i < 300; ++i) {
     ModelDef d = random_def(rng, s.meshes, s.ids);
-    d.ray_mask = layers[rng.next() % 7];
+    d.layers = layers[rng.next() % 7];
     s.add(d);
   }
   // The two planes of TestScene in layers 1 and 4.
-  ASSERT_EQ(s.scene.set_ray_mask(s.ids[0], 1u), Status::ok);
-  ASSERT_EQ(s.scene.set_ray_mask(s.ids[1], 4u), Status::ok);
+  ASSERT_EQ(s.scene.set_layers(s.ids[0], 1u), Status::ok);
+  ASSERT_EQ(s.scene.set_layers(s.ids[1], 4u), Status::ok);
   const Rays rays = make_rays(snapshot(s.scene), 900, 83);
   std::vector<uint32_t> masks(rays.set.size());
   for (uint32_t& m : masks) m = layers[rng.next() % 7];
@@ -883,16 +883,29 @@ TEST(Scene, RayMasksHideModelsFromRaysOfOtherLayers) {
     EXPECT_GT(hidden, 100u);  // the masks changed that many answers
     SceneSettings modes[2];
     modes[1].accel = SceneAccel::octree;
+    const std::vector<Snapshot> models = snapshot(s.scene);
     for (const SceneSettings& settings : modes) {
       ASSERT_EQ(s.scene.configure(settings), Status::ok);
       expect_masked_raycasts(s.scene, rays, masks, expect);
+      // Queries of a mask: the brute-force answers over the models of its layers.
+      std::vector<ModelId> got;
+      for (int q = 0; q < 40; ++q) {
+        const uint32_t mask = layers[q % 7];
+        const auto seen = [&](const Snapshot& m) { return (m.info.def.layers & mask) != 0; };
+        const Sphere sphere{{uni(rng, -60, 60), uni(rng, -60, 60), uni(rng, -60, 60)}, uni(rng, 0, 20)};
+        ASSERT_EQ(query(s.scene, sphere, got, mask), Status::ok);
+        EXPECT_EQ(got, brute_query(models, [&](const Snapshot& m) { return seen(m) && touches(m, sphere); }));
+        const AABB box{{uni(rng, -60, 60), uni(rng, -60, 60), uni(rng, -60, 60)}, {uni(rng, 0, 15), uni(rng, 0, 15), uni(rng, 0, 15)}};
+        ASSERT_EQ(query(s.scene, box, got, mask), Status::ok);
+        EXPECT_EQ(got, brute_query(models, [&](const Snapshot& m) { return seen(m) && touches(m, box); }));
+      }
     }
   };
   check("masks at add");
-  // New masks on the built tree: set_ray_mask neither rebuilds nor refits.
+  // New masks on the built tree: set_layers neither rebuilds nor refits.
   s.scene.prepare();
   const SceneStats before = s.scene.stats();
-  for (std::size_t i = 0; i < s.ids.size(); i += 4) ASSERT_EQ(s.scene.set_ray_mask(s.ids[i], layers[i % 7]), Status::ok);
+  for (std::size_t i = 0; i < s.ids.size(); i += 4) ASSERT_EQ(s.scene.set_layers(s.ids[i], layers[i % 7]), Status::ok);
   s.scene.prepare();
   EXPECT_EQ(s.scene.stats().builds, before.builds);
   EXPECT_EQ(s.scene.stats().refits, before.refits);
@@ -904,27 +917,43 @@ TEST(Scene, RayMasksHideModelsFromRaysOfOtherLayers) {
     ModelTransform t = info.def.transform;
     t.position = t.position + vec3{0.5f, -0.25f, 0.75f};
     ASSERT_EQ(s.scene.set_transform(s.ids[i], t), Status::ok);
-    ASSERT_EQ(s.scene.set_ray_mask(s.ids[i], layers[(i + 3) % 7]), Status::ok);
+    ASSERT_EQ(s.scene.set_layers(s.ids[i], layers[(i + 3) % 7]), Status::ok);
   }
   check("masks and moves");
   // Every ray of every layer: the unmasked answers.
-  std::vector<uint32_t> all(rays.set.size(), kAllRayLayers);
+  std::vector<uint32_t> all(rays.set.size(), kAllLayers);
   std::size_t hits = 0, invalid = 0;
   const std::vector<SceneHit> unmasked = brute_answers(s.scene, rays, &hits, &invalid);
   std::vector<ModelId> visible;
   for (ModelId id : s.ids) {
     ModelInfo info;
     ASSERT_EQ(s.scene.model(id, &info), Status::ok);
-    if (info.def.ray_mask == kAllRayLayers) visible.push_back(id);
+    if (info.def.layers == kAllLayers) visible.push_back(id);
   }
-  for (ModelId id : s.ids) ASSERT_EQ(s.scene.set_ray_mask(id, kAllRayLayers), Status::ok);
+  for (ModelId id : s.ids) ASSERT_EQ(s.scene.set_layers(id, kAllLayers), Status::ok);
   expect_masked_raycasts(s.scene, rays, all, unmasked);
   Columns c(rays.set.size());
   ASSERT_EQ(raycast_closest(s.scene, rays.view(), rays.set.size(), c.out()), Status::ok);  // null masks
   for (std::size_t i = 0; i < rays.set.size(); ++i) expect_batch_matches(c, unmasked, rays, i);
+  // A pick of a mask: the masked ray through the cursor.
+  Camera cam = perspective_camera(1.0f, 1.3f, 0.5f, 200.0f);
+  set_look_at(cam, {0.0f, 5.0f, -70.0f}, {0.0f, 0.0f, 0.0f}, {0.0f, 1.0f, 0.0f});
+  ASSERT_EQ(s.scene.set_layers(s.ids[7], 2u), Status::ok);
+  const Ray through = picking_ray(cam, {320.0f, 240.0f}, {640.0f, 480.0f});
+  std::size_t picks_hit = 0;
+  for (const uint32_t mask : {1u, 2u, 6u, 0u, kAllLayers}) {
+    SceneHit picked;
+    ASSERT_EQ(pick(s.scene, cam, {320.0f, 240.0f}, {640.0f, 480.0f}, &picked, mask), Status::ok);
+    std::vector<Snapshot> seen;
+    for (const Snapshot& m : snapshot(s.scene))
+      if ((m.info.def.layers & mask) != 0) seen.push_back(m);
+    expect_same(picked, brute_closest(seen, through, 0.0f, kInf), mask);
+    picks_hit += picked.hit.hit;
+  }
+  EXPECT_GT(picks_hit, 0u);
   // A stale id changes nothing.
   ASSERT_EQ(s.scene.remove_model(s.ids[5]), Status::ok);
-  EXPECT_EQ(s.scene.set_ray_mask(s.ids[5], 1u), Status::stale_id);
+  EXPECT_EQ(s.scene.set_layers(s.ids[5], 1u), Status::stale_id);
 }
 
 // Moves alone refit the BVH (SceneSettings::refit): the same answers as brute force over

@@ -389,12 +389,13 @@ uint64_t scene_models() {
   return h.digest();
 }
 
-// Ray layers: 300 models of add_random_models() (some parented) and a plane, each model in
-// one of four layers, in none or in all (set_ray_mask before the first build, and the plane's
-// ModelDef::ray_mask), under both structures; rays of random masks (one layer, two, none,
-// all), closest and any hits, single rays too; then after a tenth of the masks changed
-// (set_ray_mask on a built tree: only the leaves' masks rewritten).
-uint64_t scene_ray_masks() {
+// Layers: 300 models of add_random_models() (some parented) and a plane, each model in
+// one of four layers, in none or in all (set_layers before the first build, and the plane's
+// ModelDef::layers), under both structures; rays of random masks (one layer, two, none,
+// all), closest and any hits, single rays too, and sphere queries of every mask; then after
+// a tenth of the layers changed (set_layers on a built tree: only the leaves' masks
+// rewritten).
+uint64_t scene_layers() {
   static const std::vector<std::shared_ptr<const TriangleMesh>> meshes = [] {
     auto t = std::make_shared<TriangleMesh>();
     return TriangleMesh::create(make_sphere_mesh(1.2f, 6, 10), *t) == Status::ok
@@ -402,7 +403,7 @@ uint64_t scene_ray_masks() {
                : std::vector<std::shared_ptr<const TriangleMesh>>{};
   }();
   if (meshes.empty()) return 0;
-  static const uint32_t kLayers[7] = {1u, 2u, 4u, 8u, 3u, 0u, kAllRayLayers};
+  static const uint32_t kLayers[7] = {1u, 2u, 4u, 8u, 3u, 0u, kAllLayers};
   static const std::vector<uint32_t> ray_masks = [] {
     std::vector<uint32_t> m;
     SplitMix64 rng(52);
@@ -419,13 +420,13 @@ uint64_t scene_ray_masks() {
     std::vector<ModelId> ids;
     if (!add_random_models(scene, rng, 300, meshes, ids)) return 0;
     for (std::size_t i = 0; i < ids.size(); ++i)
-      if (scene.set_ray_mask(ids[i], i % 11 == 0 ? 0u : i % 13 == 0 ? kAllRayLayers : 1u << (rng.next() % 4)) !=
+      if (scene.set_layers(ids[i], i % 11 == 0 ? 0u : i % 13 == 0 ? kAllLayers : 1u << (rng.next() % 4)) !=
           Status::ok)
         return 0;
     ModelDef plane;
     plane.shape = ModelShape::plane;
     plane.plane = {{0.0f, 1.0f, 0.0f}, -30.0f};
-    plane.ray_mask = 2u;
+    plane.layers = 2u;
     ModelId pid;
     if (scene.add_model(plane, &pid) != Status::ok) return 0;
     for (int round = 0; round < 2; ++round) {
@@ -445,8 +446,14 @@ uint64_t scene_ray_masks() {
         const SceneHit one = raycast(scene, ray, 0.0f, __builtin_inff(), ray_masks[i]);
         h.add_u32(std::bit_cast<uint32_t>(one.hit.t)), h.add_u32(one.model.index);
       }
+      std::vector<ModelId> found;
+      for (const uint32_t mask : kLayers) {
+        if (query(scene, Sphere{{2.0f, -1.0f, 3.0f}, 14.0f}, found, mask) != Status::ok) return 0;
+        for (ModelId id : found) h.add_u32(id.index);
+        h.add_u32(uint32_t(found.size()));
+      }
       for (std::size_t i = 0; i < ids.size(); i += 10)
-        if (scene.set_ray_mask(ids[i], kLayers[(i / 10) % 7]) != Status::ok) return 0;
+        if (scene.set_layers(ids[i], kLayers[(i / 10) % 7]) != Status::ok) return 0;
     }
   }
   return h.digest();
@@ -977,7 +984,7 @@ const DetScene kScenes[] = {
     {"mesh_bvh", scene_mesh_bvh, 0xde9c8060e85afecaull},
     {"camera_frustum", scene_camera_frustum, 0x246ff5bf8a6a766cull},
     {"scene_models", scene_models, 0xdba9aabb65c16b46ull},
-    {"scene_ray_masks", scene_ray_masks, 0x06c0ede04971a44bull},
+    {"scene_layers", scene_layers, 0xd8ccdb8e79b20c3dull},
     {"rays_one_origin", scene_rays_one_origin, 0x4ee4f0393c05adbaull},
     {"mesh_slivers", scene_mesh_slivers, 0xa80aeab449555782ull},
 #endif

@@ -360,9 +360,9 @@ namespace Gyro.Tests
                         Ok(hits.T[k] == before[k], accel + ": refit " + on + " after a move changes no t");
                 }
 
-                // Ray layers: the sphere in layer 2 only; ray 0 sees layer 1 (passes through it),
+                // Layers: the sphere in layer 2 only; ray 0 sees layer 1 (passes through it),
                 // ray 4 layer 1 (still sees the box, in every layer).
-                s.SetRayMask(sphere, 2u);
+                s.SetLayers(sphere, 2u);
                 uint[] masks = { 1u, 2u, ~0u, 0u, 1u };
                 s.RaycastClosest(rays, hits, masks);
                 Ok(hits.Model[0].IsNull && float.IsPositiveInfinity(hits.T[0]), accel + ": a ray of layer 1 passes through a sphere of layer 2");
@@ -371,7 +371,9 @@ namespace Gyro.Tests
                 Ok(hits.Model[4] == box && hits.T[4] == before[4], accel + ": a ray of layer 1 still hits the box");
                 s.RaycastAny(rays, hits, masks);
                 Ok(hits.Model[0].IsNull && hits.Model[1] == sphere, accel + ": any-hit honours the masks");
-                s.SetRayMask(sphere, ~0u);
+                Ok(s.QuerySphere(new Vec3(0, 0, 3.5f), 1.0f, 1u).Length == 0 && s.QuerySphere(new Vec3(0, 0, 3.5f), 1.0f, 2u).Length == 1, accel + ": queries see the sphere in layer 2 only");
+                Ok(s.QueryAabb(new Vec3(5, 0, 0), new Vec3(6, 2, 6), 1u).Length == 1, accel + ": a box query of layer 1 finds the box alone");
+                s.SetLayers(sphere, ~0u);
                 s.RaycastClosest(rays, hits);
                 Ok(hits.Model[0] == sphere && hits.T[0] == before[0], accel + ": the sphere back in every layer");
                 try

@@ -134,10 +134,10 @@ impl Scene {
         check(unsafe { sys::gyro_scene_set_parent(self.raw.as_ptr(), id, parent) })
     }
 
-    /// The ray layers the model is in (all 32 to start with): a masked ray passes through a
-    /// model whose mask shares no bit with its own; 0 hides it from every ray.
-    pub fn set_ray_mask(&mut self, id: ModelId, ray_mask: u32) -> Result<()> {
-        check(unsafe { sys::gyro_scene_set_ray_mask(self.raw.as_ptr(), id, ray_mask) })
+    /// The layers the model is in (all 32 to start with): the masked raycasts, queries and
+    /// picks see it only through a shared bit; 0 hides it from all of them.
+    pub fn set_layers(&mut self, id: ModelId, layers: u32) -> Result<()> {
+        check(unsafe { sys::gyro_scene_set_layers(self.raw.as_ptr(), id, layers) })
     }
 
     pub fn model_count(&self) -> usize {
@@ -160,14 +160,14 @@ impl Scene {
         check(unsafe { sys::gyro_scene_raycast_any(self.as_ptr(), &r, count(n, "rays")?, &h) })
     }
 
-    /// The closest hit of every ray among the models whose ray mask shares a bit with the
+    /// The closest hit of every ray among the models whose layers share a bit with the
     /// ray's `masks[i]` (at least as many masks as rays).
     pub fn raycast_closest_masked(&self, rays: &Rays, masks: &[u32], hits: &mut SceneHits) -> Result<()> {
         let (r, h, n) = self.masked(rays, masks, hits)?;
         check(unsafe { sys::gyro_scene_raycast_closest_masked(self.as_ptr(), &r, masks.as_ptr(), n, &h) })
     }
 
-    /// Any hit, with ray layers as `raycast_closest_masked`.
+    /// Any hit, with layers as `raycast_closest_masked`.
     pub fn raycast_any_masked(&self, rays: &Rays, masks: &[u32], hits: &mut SceneHits) -> Result<()> {
         let (r, h, n) = self.masked(rays, masks, hits)?;
         check(unsafe { sys::gyro_scene_raycast_any_masked(self.as_ptr(), &r, masks.as_ptr(), n, &h) })

@@ -240,9 +240,9 @@ fn scene_raycasts_name_the_model_hit() {
     assert!(same(model[2], floor_id) && close(t[2], 7.0, 1e-5) && prim[2] >= 0 && close(ny[2], 1.0, 1e-6));
     assert_eq!((model[3].index, model[3].generation, prim[3]), (0, 0, -1));
     assert!(t[3].is_infinite());
-    // Ray layers: the sphere in layer 2 only. Ray 0 (layer 1) passes through it to nothing,
+    // Layers: the sphere in layer 2 only. Ray 0 (layer 1) passes through it to nothing,
     // ray 1 (layer 2) still hits the cube, which is in every layer; a mask of 0 sees nothing.
-    scene.set_ray_mask(sphere_id, 2).unwrap();
+    scene.set_layers(sphere_id, 2).unwrap();
     {
         let mut t2 = [0.0f32; 4];
         let mut model2 = [ModelId { index: 0, generation: 0 }; 4];
@@ -256,7 +256,7 @@ fn scene_raycasts_name_the_model_hit() {
         let short = scene.raycast_closest_masked(&rays, &[1], &mut hits2).unwrap_err();
         assert_eq!(short.status(), Status::InvalidCount);
     }
-    scene.set_ray_mask(sphere_id, u32::MAX).unwrap();
+    scene.set_layers(sphere_id, u32::MAX).unwrap();
     // Prefetching changes speed only.
     let before = t;
     for mode in [RayPrefetch::Always, RayPrefetch::Never, RayPrefetch::Auto] {
