@@ -184,6 +184,11 @@ impl Scene {
 
     /// The models overlapping a sphere, in ascending id order.
     pub fn query_sphere(&self, center: Vec3, radius: f32) -> Result<Vec<ModelId>> {
+        self.query_sphere_masked(center, radius, u32::MAX)
+    }
+
+    /// The models overlapping a sphere whose layers share a bit with `mask`, ascending.
+    pub fn query_sphere_masked(&self, center: Vec3, radius: f32, mask: u32) -> Result<Vec<ModelId>> {
         let (cx, cy, cz, r) = ([center.x], [center.y], [center.z], [radius]);
         let shape = sys::gyro_shape_soa {
             r#type: sys::GYRO_SHAPE_SPHERE,
@@ -193,10 +198,10 @@ impl Scene {
             },
         };
         let mut n = 0;
-        check(unsafe { sys::gyro_scene_query(self.as_ptr(), &shape, ptr::null_mut(), 0, &mut n) })?;
+        check(unsafe { sys::gyro_scene_query_masked(self.as_ptr(), &shape, mask, ptr::null_mut(), 0, &mut n) })?;
         let mut out = vec![ModelId { index: 0, generation: 0 }; n.max(0) as usize];
         let mut got = 0;
-        check(unsafe { sys::gyro_scene_query(self.as_ptr(), &shape, out.as_mut_ptr(), n, &mut got) })?;
+        check(unsafe { sys::gyro_scene_query_masked(self.as_ptr(), &shape, mask, out.as_mut_ptr(), n, &mut got) })?;
         out.truncate(got.clamp(0, n) as usize);
         Ok(out)
     }

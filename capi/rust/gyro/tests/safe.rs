@@ -256,6 +256,10 @@ fn scene_raycasts_name_the_model_hit() {
         let short = scene.raycast_closest_masked(&rays, &[1], &mut hits2).unwrap_err();
         assert_eq!(short.status(), Status::InvalidCount);
     }
+    let c = Vec3 { x: 0.0, y: 0.0, z: 5.0 };
+    assert!(scene.query_sphere_masked(c, 0.5, 1).unwrap().is_empty());
+    let in2 = scene.query_sphere_masked(c, 0.5, 2).unwrap();
+    assert!(in2.len() == 1 && same(in2[0], sphere_id));
     scene.set_layers(sphere_id, u32::MAX).unwrap();
     // Prefetching changes speed only.
     let before = t;
