@@ -501,6 +501,64 @@ GyroRuns run_gyro_spheres_scene(const Options& o, const testing::SphereSet& sphe
   return rates;
 }
 
+// Layers (ModelDef::layers, RaysView::mask): R1's odd spheres in layer 2 and every ray in
+// layer 1, so the rays see the even spheres alone. Both lines are scored against the binary64
+// brute force over the even spheres: the layered scene, and a scene holding the even spheres
+// alone, whose time is what the hidden half would cost if it were not in the tree at all.
+void run_gyro_spheres_layers(const Options& o, const testing::SphereSet& spheres, const RayCase& c) {
+  testing::SphereSet even;
+  for (std::size_t i = 0; i < spheres.size(); i += 2) {
+    even.cx.push_back(spheres.cx[i]), even.cy.push_back(spheres.cy[i]), even.cz.push_back(spheres.cz[i]);
+    even.r.push_back(spheres.r[i]);
+  }
+  RayCase cv = c;
+  cv.ref.clear();
+  for (const testing::RefHit& h : testing::ref_raycast_spheres(c.rays, kR1ReferenceRays, even)) cv.ref.push_back(h.t);
+  const auto scene_of = [&](const testing::SphereSet& set, bool layered) {
+    Scene scene;
+    for (std::size_t i = 0; i < set.size(); ++i) {
+      ModelDef d;
+      d.shape = ModelShape::sphere;
+      d.radius = set.r[i];
+      d.transform.position = {set.cx[i], set.cy[i], set.cz[i]};
+      d.layers = layered && i % 2 == 1 ? 2u : 1u;
+      ModelId id;
+      if (scene.add_model(d, &id) != Status::ok) std::printf("# gyro scene: add_model failed (%s)\n", last_error());
+    }
+    scene.prepare();
+    return scene;
+  };
+  const Scene layered = scene_of(spheres, true), alone = scene_of(even, false);
+  std::printf("# R1 layers: odd spheres in layer 2, rays of layer 1; error against the binary64 brute force over the "
+              "%zu even spheres\n", even.size());
+  const std::size_t n = c.rays.size();
+  const std::vector<float> tmax = tmax_column(c, n);
+  const std::vector<uint32_t> masks(n, 1u);
+  std::vector<float> t(n);
+  std::vector<ModelId> model(n);
+  const SceneHitsOut out{t.data(), model.data()};
+  for (SimdLevel level : ray_levels(o)) {
+    set_simd_level(level);
+    for (uint32_t threads : threads_to_run(o)) {
+      set_thread_count(threads);
+      RaysView masked = view_with_tmax(c.rays, tmax);
+      masked.mask = masks.data();
+      const double ms = median_ms(o.reps, [&] { raycast_closest(layered, masked, n, out); });
+      emit(cv,
+           {"gyro", "closest_hit_scene_bvh_layers", simd_level_name(level), threads, 0.0, layered.stats().bytes,
+            spheres.size(), ms, o.reps},
+           score(t.data(), n, c.tmax, cv.ref), "bytes_per_sphere");
+      const double alone_ms = median_ms(o.reps, [&] { raycast_closest(alone, view_with_tmax(c.rays, tmax), n, out); });
+      emit(cv,
+           {"gyro", "closest_hit_scene_bvh_visible_only", simd_level_name(level), threads, 0.0, alone.stats().bytes,
+            even.size(), alone_ms, o.reps},
+           score(t.data(), n, c.tmax, cv.ref), "bytes_per_sphere");
+    }
+  }
+  set_simd_level(SimdLevel::automatic);
+  set_thread_count(0);
+}
+
 // ---------------------------------------------------------------- peers
 
 enum class Geometry { triangles, spheres };
@@ -643,6 +701,7 @@ void run_r1(const Options& o) {
   std::printf("# ratio_vs = this line's throughput / gyro's (best SIMD level, same threads)\n");
   const GyroRuns gyro = run_gyro_spheres_scene(o, spheres, c);
   run_gyro_spheres_subsample(o, spheres, c);
+  run_gyro_spheres_layers(o, spheres, c);
   if (!o.peers) return;
   run_embree(o, Geometry::spheres, nullptr, &spheres, c, gyro);
   run_bullet(o, Geometry::spheres, nullptr, &spheres, c, gyro);
