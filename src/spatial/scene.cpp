@@ -329,13 +329,13 @@ struct Scene::Impl {
   std::vector<detail::SceneLeaf> ray_leaves;  // bvh.leaves as the ray kernel reads them
   std::vector<detail::SceneBox> ray_boxes;    // their box models
   bool rays_large = false;                     // beyond kFetchBytes (RayPrefetch::automatic)
-  bool masks_changed = false;                  // a model's layers set since the leaves were written
+  bool layers_changed = false;                 // a model's layers set since the leaves were written
   Octree octree;
   SceneAccel built = SceneAccel::bvh;
   std::mutex mutex;
   std::atomic<bool> world_ready{true};
   std::atomic<bool> tree_ready{false};
-  bool tree_stale = true;  // the tree needs build_tree() (false while only masks changed)
+  bool tree_stale = true;  // the tree needs build_tree() (false while only layers changed)
   bool rebuild = true;      // a change other than transforms: the next build_tree() starts afresh
   double built_sah = 0.0;   // the last full BVH build's sah_cost, which a refit may not exceed by kSceneRefitCost
   std::size_t builds = 0, refits = 0;
@@ -666,14 +666,14 @@ struct Scene::Impl {
     detail::FloatEnvGuard env;
     if (tree_stale) build_tree();
     tree_stale = false;
-    if (masks_changed) {
+    if (layers_changed) {
       // set_layers() changes what the leaves hold, not the tree: a build has written the
       // new masks already, a refit has not.
       for (std::size_t l = 0; l < ray_leaves.size(); ++l) {
         const uint32_t item = bvh.leaves[l].item[0];
         ray_leaves[l].layers = item == detail::kNoItem ? 0u : defs[tree_slots[item]].layers;
       }
-      masks_changed = false;
+      layers_changed = false;
     }
     tree_ready.store(true, std::memory_order_release);
   }
@@ -800,7 +800,7 @@ Status Scene::set_layers(ModelId id, uint32_t layers) {
   if (s == detail::IdPool::kNoSlot) return fail(Status::stale_id, "model {%u, %u} is not live", id.index, id.generation);
   if (m.defs[s].layers == layers) return Status::ok;
   m.defs[s].layers = layers;
-  m.masks_changed = true;
+  m.layers_changed = true;
   m.tree_ready.store(false, std::memory_order_relaxed);  // the leaves' masks, not the world or the tree
   return Status::ok;
 }
