@@ -1078,7 +1078,8 @@ extern "C" {
 
     /// Sets the layers a model is in (ABI 1.9; every model starts in all 32, 0xFFFFFFFF): the
     /// masked raycasts, queries and picks (the _masked calls) see a model only when their mask
-    /// shares a bit with its layers; 0 hides it from all of them, the unmasked calls see it.
+    /// shares a bit with its layers; the unmasked calls see every layer. 0 hides the model
+    /// from every raycast, query and pick, masked or not.
     /// Not a structural change (the tree is neither rebuilt nor refit). STALE_ID or
     /// NULL_ARGUMENT change nothing.
     pub fn gyro_scene_set_layers(scene: *mut gyro_scene, id: gyro_model_id, layers: u32) -> gyro_status;
