@@ -30,6 +30,11 @@
 //    (with SceneSettings::refit, moves alone refit the tree and redo only what moved).
 //    const queries may run concurrently; the first one after a change rebuilds under a
 //    lock. Changes must not run alongside queries.
+//  - Layers: each model is in the layers of ModelDef::layers (32 bits, all by default);
+//    every raycast, query and pick takes a mask (all layers by default) and considers only
+//    the models sharing a bit with it, as if the others were not in the scene: the answers
+//    are the brute force over those models. set_layers() changes a model's layers without
+//    a rebuild or a refit.
 //  - A model whose world transform or bounds overflow float (a chain of huge scales) is
 //    kept but never hit or found by a query.
 //  - Bad input changes nothing and returns a Status with a detail in last_error(): NaN or
