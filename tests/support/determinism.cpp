@@ -283,10 +283,16 @@ RaySet random_rays(uint64_t seed, int count, double scale, double offset) {
   return r;
 }
 
-// `count` spheres, boxes and instances of `meshes` (in turn), scaled, rotated, every seventh
-// the child of an earlier one, in a 60-unit cube; their ids appended to ids.
-bool add_random_models(Scene& scene, SplitMix64& rng, int count,
-                       const std::vector<std::shared_ptr<const TriangleMesh>>& meshes, std::vector<ModelId>& ids) {
+// A scene under `accel` of `count` spheres, boxes and instances of `meshes` (in turn),
+// scaled, rotated, every seventh the child of an earlier one, in a 60-unit cube; their ids
+// in ids.
+bool random_scene(SceneAccel accel, SplitMix64& rng, int count,
+                  const std::vector<std::shared_ptr<const TriangleMesh>>& meshes, Scene& scene,
+                  std::vector<ModelId>& ids) {
+  SceneSettings settings;
+  settings.accel = accel;
+  scene = Scene(settings);
+  ids.clear();
   for (int i = 0; i < count; ++i) {
     ModelDef d;
     d.shape = ModelShape(i % 3);
@@ -324,12 +330,10 @@ uint64_t scene_models() {
   static const RaySet rays = random_rays(41, 3000, 80.0, -40.0);
   detail::StateHasher h;
   for (SceneAccel accel : {SceneAccel::bvh, SceneAccel::octree}) {
-    SceneSettings settings;
-    settings.accel = accel;
-    Scene scene(settings);
+    Scene scene;
     SplitMix64 rng(42);
     std::vector<ModelId> ids;
-    if (!add_random_models(scene, rng, 400, meshes, ids)) return 0;
+    if (!random_scene(accel, rng, 400, meshes, scene, ids)) return 0;
     ModelDef plane;
     plane.shape = ModelShape::plane;
     plane.plane = {{0.0f, 1.0f, 0.0f}, -35.0f};
@@ -389,7 +393,7 @@ uint64_t scene_models() {
   return h.digest();
 }
 
-// Layers: 300 models of add_random_models() (some parented) and a plane, each model in
+// Layers: 300 models of random_scene() (some parented) and a plane, each model in
 // one of four layers, in none or in all (set_layers before the first build, and the plane's
 // ModelDef::layers), under both structures; rays of random masks (one layer, two, none,
 // all), closest and any hits, single rays too, and sphere queries of every mask; then after
@@ -413,12 +417,10 @@ uint64_t scene_layers() {
   static const RaySet rays = random_rays(51, 2000, 70.0, -35.0);
   detail::StateHasher h;
   for (SceneAccel accel : {SceneAccel::bvh, SceneAccel::octree}) {
-    SceneSettings settings;
-    settings.accel = accel;
-    Scene scene(settings);
+    Scene scene;
     SplitMix64 rng(53);
     std::vector<ModelId> ids;
-    if (!add_random_models(scene, rng, 300, meshes, ids)) return 0;
+    if (!random_scene(accel, rng, 300, meshes, scene, ids)) return 0;
     for (std::size_t i = 0; i < ids.size(); ++i)
       if (scene.set_layers(ids[i], i % 11 == 0 ? 0u : i % 13 == 0 ? kAllLayers : 1u << (rng.next() % 4)) !=
           Status::ok)
