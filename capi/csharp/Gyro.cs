@@ -612,6 +612,21 @@ namespace Gyro
             return Query(&s, null, mask);
         }
 
+        /// <summary>Models overlapping an oriented box (centre, half extents, unit axes: the rows of its orientation), ascending ids.</summary>
+        public ModelId[] QueryObb(Vec3 center, Vec3 halfExtents, Vec3 axis0, Vec3 axis1, Vec3 axis2, uint mask = 0xFFFFFFFFu)
+        {
+            float cx = center.X, cy = center.Y, cz = center.Z, ex = halfExtents.X, ey = halfExtents.Y, ez = halfExtents.Z;
+            float u0x = axis0.X, u0y = axis0.Y, u0z = axis0.Z, u1x = axis1.X, u1y = axis1.Y, u1z = axis1.Z;
+            float u2x = axis2.X, u2y = axis2.Y, u2z = axis2.Z;
+            ShapeSoa s = default(ShapeSoa);
+            s.Type = ShapeType.Obb;
+            s.As.Obb.Cx = &cx; s.As.Obb.Cy = &cy; s.As.Obb.Cz = &cz; s.As.Obb.Ex = &ex; s.As.Obb.Ey = &ey; s.As.Obb.Ez = &ez;
+            s.As.Obb.U0x = &u0x; s.As.Obb.U0y = &u0y; s.As.Obb.U0z = &u0z;
+            s.As.Obb.U1x = &u1x; s.As.Obb.U1y = &u1y; s.As.Obb.U1z = &u1z;
+            s.As.Obb.U2x = &u2x; s.As.Obb.U2y = &u2y; s.As.Obb.U2z = &u2z;
+            return Query(&s, null, mask);
+        }
+
         /// <summary>Models whose bounding volume intersects the frustum, ascending ids.</summary>
         public ModelId[] QueryFrustum(Frustum frustum, uint mask = 0xFFFFFFFFu) { return Query(null, &frustum, mask); }
 

@@ -389,6 +389,13 @@ namespace Gyro.Tests
                 ModelId[] near = s.QuerySphere(new Vec3(0, 0, 3.5f), 1.0f);
                 Ok(near.Length == 1 && near[0] == sphere, accel + ": sphere query finds the sphere only");
                 Ok(s.QueryAabb(new Vec3(5, 0, 0), new Vec3(6, 2, 6)).Length == 2, accel + ": box query finds both");
+                // A thin box along the line from the sphere to the box reaches both; the axis-aligned
+                // box of the same extents, around the same centre, neither.
+                Vec3 mid = new Vec3(5, 0, 2.5f), thin = new Vec3(6, 0.5f, 0.5f);
+                Vec3 along = new Vec3(0.8944272f, 0, -0.4472136f), up = new Vec3(0, 1, 0), across = new Vec3(0.4472136f, 0, 0.8944272f);
+                Ok(s.QueryObb(mid, thin, along, up, across).Length == 2, accel + ": an oriented box query finds both");
+                Ok(s.QueryObb(mid, thin, along, up, across, 0u).Length == 0, accel + ": an oriented box query of no layer finds none");
+                Ok(s.QueryAabb(mid, thin).Length == 0, accel + ": the axis-aligned box of the same extents finds neither");
 
                 rays.Count = 2;
                 Ok(rays.Count == 2, accel + ": a batch can use fewer rays than its capacity");

@@ -14,18 +14,20 @@ use core::fmt;
 
 pub use gyro_sys as sys;
 
+mod camera;
 mod convex;
 mod mesh;
 mod scene;
 mod soft;
 mod world;
 
+pub use camera::{Camera, Frustum};
 pub use convex::{
     convex_contact_pairs, convex_distance_pairs, convex_intersect_pairs, convex_penetration_pairs, convex_pose, convex_pose_at, ConvexEdge, ConvexHull, ConvexHullInfo,
     ConvexMass, ConvexPlane, ConvexPose, ConvexResult, ConvexShape,
 };
 pub use mesh::{raycast_spheres_closest, Hits, Mesh, MeshInfo, Rays, Spheres};
-pub use scene::{ModelDef, ModelId, RayPrefetch, Scene, SceneAccel, SceneHits, Transform};
+pub use scene::{ModelDef, ModelId, PickHit, RayPrefetch, Scene, SceneAccel, SceneHits, Transform};
 pub use soft::{
     cloth_def, soft_cube_def, soft_mesh_def, soft_settings, ClothDef, SoftBodyId, SoftBodyStats, SoftBodyView,
     SoftCubeDef, SoftMeshDef, SoftSettings, SpringConstants, SpringFamily,

@@ -2,7 +2,7 @@
 //! parents, under a BVH or an octree.
 use core::ptr::{self, NonNull};
 
-use crate::{check, count, sys, Error, Mesh, Rays, Result, Status, Vec3};
+use crate::{check, count, sys, Camera, Error, Frustum, Mesh, Rays, Result, Status, Vec3};
 
 pub type ModelDef = sys::gyro_model_def;
 pub type ModelId = sys::gyro_model_id;
@@ -190,19 +190,119 @@ impl Scene {
     /// The models overlapping a sphere whose layers share a bit with `mask`, ascending.
     pub fn query_sphere_masked(&self, center: Vec3, radius: f32, mask: u32) -> Result<Vec<ModelId>> {
         let (cx, cy, cz, r) = ([center.x], [center.y], [center.z], [radius]);
-        let shape = sys::gyro_shape_soa {
-            r#type: sys::GYRO_SHAPE_SPHERE,
-            reserved: 0,
-            r#as: sys::gyro_shape_soa_as {
-                sphere: sys::gyro_sphere_soa { cx: cx.as_ptr(), cy: cy.as_ptr(), cz: cz.as_ptr(), r: r.as_ptr() },
-            },
-        };
-        let mut n = 0;
-        check(unsafe { sys::gyro_scene_query_masked(self.as_ptr(), &shape, mask, ptr::null_mut(), 0, &mut n) })?;
-        let mut out = vec![ModelId { index: 0, generation: 0 }; n.max(0) as usize];
-        let mut got = 0;
-        check(unsafe { sys::gyro_scene_query_masked(self.as_ptr(), &shape, mask, out.as_mut_ptr(), n, &mut got) })?;
-        out.truncate(got.clamp(0, n) as usize);
-        Ok(out)
+        let sphere = sys::gyro_sphere_soa { cx: cx.as_ptr(), cy: cy.as_ptr(), cz: cz.as_ptr(), r: r.as_ptr() };
+        self.query_shape(sys::GYRO_SHAPE_SPHERE, sys::gyro_shape_soa_as { sphere }, mask)
     }
+
+    /// The models overlapping an axis-aligned box (centre, half extents), ascending.
+    pub fn query_aabb(&self, center: Vec3, half_extents: Vec3) -> Result<Vec<ModelId>> {
+        self.query_aabb_masked(center, half_extents, u32::MAX)
+    }
+
+    /// `query_aabb` among the models whose layers share a bit with `mask`.
+    pub fn query_aabb_masked(&self, center: Vec3, half_extents: Vec3, mask: u32) -> Result<Vec<ModelId>> {
+        let (c, e) = (xyz1(center), xyz1(half_extents));
+        let aabb = sys::gyro_aabb_soa {
+            cx: c[0].as_ptr(),
+            cy: c[1].as_ptr(),
+            cz: c[2].as_ptr(),
+            ex: e[0].as_ptr(),
+            ey: e[1].as_ptr(),
+            ez: e[2].as_ptr(),
+        };
+        self.query_shape(sys::GYRO_SHAPE_AABB, sys::gyro_shape_soa_as { aabb }, mask)
+    }
+
+    /// The models overlapping an oriented box: centre, half extents and its unit axes (the
+    /// rows of its orientation: world = local * orientation + centre), ascending.
+    pub fn query_obb(&self, center: Vec3, half_extents: Vec3, axes: [Vec3; 3]) -> Result<Vec<ModelId>> {
+        self.query_obb_masked(center, half_extents, axes, u32::MAX)
+    }
+
+    /// `query_obb` among the models whose layers share a bit with `mask`.
+    pub fn query_obb_masked(&self, center: Vec3, half_extents: Vec3, axes: [Vec3; 3], mask: u32) -> Result<Vec<ModelId>> {
+        let (c, e) = (xyz1(center), xyz1(half_extents));
+        let u = axes.map(xyz1);
+        let obb = sys::gyro_obb_soa {
+            cx: c[0].as_ptr(),
+            cy: c[1].as_ptr(),
+            cz: c[2].as_ptr(),
+            ex: e[0].as_ptr(),
+            ey: e[1].as_ptr(),
+            ez: e[2].as_ptr(),
+            u0x: u[0][0].as_ptr(),
+            u0y: u[0][1].as_ptr(),
+            u0z: u[0][2].as_ptr(),
+            u1x: u[1][0].as_ptr(),
+            u1y: u[1][1].as_ptr(),
+            u1z: u[1][2].as_ptr(),
+            u2x: u[2][0].as_ptr(),
+            u2y: u[2][1].as_ptr(),
+            u2z: u[2][2].as_ptr(),
+        };
+        self.query_shape(sys::GYRO_SHAPE_OBB, sys::gyro_shape_soa_as { obb }, mask)
+    }
+
+    /// The models whose bounds intersect the frustum (never one that is visible left out),
+    /// ascending.
+    pub fn query_frustum(&self, frustum: &Frustum) -> Result<Vec<ModelId>> {
+        self.query_frustum_masked(frustum, u32::MAX)
+    }
+
+    /// `query_frustum` among the models whose layers share a bit with `mask`.
+    pub fn query_frustum_masked(&self, frustum: &Frustum, mask: u32) -> Result<Vec<ModelId>> {
+        collect_ids(|out, capacity, n| unsafe {
+            sys::gyro_scene_query_frustum_masked(self.as_ptr(), &frustum.0, mask, out, capacity, n)
+        })
+    }
+
+    /// The closest model under a screen point (pixels from the top-left, y down) of a
+    /// viewport of `viewport` = (width, height) pixels; None when the picking ray hits none.
+    pub fn pick(&self, camera: &Camera, screen: (f32, f32), viewport: (f32, f32)) -> Result<Option<PickHit>> {
+        self.pick_masked(camera, screen, viewport, u32::MAX)
+    }
+
+    /// `pick` among the models whose layers share a bit with `mask`.
+    pub fn pick_masked(&self, camera: &Camera, screen: (f32, f32), viewport: (f32, f32), mask: u32) -> Result<Option<PickHit>> {
+        let mut h = sys::gyro_scene_hit {
+            hit: 0,
+            t: 0.0,
+            point: [0.0; 3],
+            normal: [0.0; 3],
+            model: ModelId { index: 0, generation: 0 },
+            primitive: 0,
+            u: 0.0,
+            v: 0.0,
+        };
+        check(unsafe {
+            sys::gyro_scene_pick_masked(self.as_ptr(), &camera.0, screen.0, screen.1, viewport.0, viewport.1, mask, &mut h)
+        })?;
+        Ok((h.hit != 0).then_some(h))
+    }
+
+    fn query_shape(&self, kind: sys::gyro_shape_type, shape: sys::gyro_shape_soa_as, mask: u32) -> Result<Vec<ModelId>> {
+        let shape = sys::gyro_shape_soa { r#type: kind, reserved: 0, r#as: shape };
+        collect_ids(|out, capacity, n| unsafe { sys::gyro_scene_query_masked(self.as_ptr(), &shape, mask, out, capacity, n) })
+    }
+}
+
+/// A pick's answer: t along the picking ray, the point, the normal, the model, and for a
+/// mesh model the triangle and its barycentrics.
+pub type PickHit = sys::gyro_scene_hit;
+
+/// A vector as three one-element arrays: shape 0 of a structure-of-arrays view.
+fn xyz1(v: Vec3) -> [[f32; 1]; 3] {
+    [[v.x], [v.y], [v.z]]
+}
+
+/// The ids a counting query gives: asked once for the count, then into a buffer that size
+/// (the scene does not change between the calls: queries take it shared).
+fn collect_ids(query: impl Fn(*mut ModelId, i32, &mut i32) -> sys::gyro_status) -> Result<Vec<ModelId>> {
+    let mut n = 0;
+    check(query(ptr::null_mut(), 0, &mut n))?;
+    let mut out = vec![ModelId { index: 0, generation: 0 }; n.max(0) as usize];
+    let mut got = 0;
+    check(query(out.as_mut_ptr(), n, &mut got))?;
+    out.truncate(got.clamp(0, n) as usize);
+    Ok(out)
 }

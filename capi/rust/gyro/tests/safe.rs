@@ -291,6 +291,74 @@ fn scene_raycasts_name_the_model_hit() {
 }
 
 #[test]
+fn scene_queries_frustums_and_picks() {
+    let mut scene = Scene::new(SceneAccel::Bvh).unwrap();
+    let add = |scene: &mut Scene, shape: u32, at: [f32; 3], layers: u32| {
+        let mut d = Scene::model_def();
+        d.shape = shape;
+        d.transform.position = at;
+        let id = scene.add_model(&d, None).unwrap();
+        scene.set_layers(id, layers).unwrap();
+        id
+    };
+    let ahead = add(&mut scene, sys::GYRO_MODEL_SPHERE, [0.0, 0.0, 10.0], 1);
+    let right = add(&mut scene, sys::GYRO_MODEL_SPHERE, [5.0, 0.0, 10.0], 2);
+    let behind = add(&mut scene, sys::GYRO_MODEL_SPHERE, [0.0, 0.0, -10.0], 1);
+    let above = add(&mut scene, sys::GYRO_MODEL_BOX, [0.0, 5.0, 10.0], 4);
+    let ids = |v: Vec<ModelId>| v.iter().map(|m| (m.index, m.generation)).collect::<Vec<_>>();
+    let id = |m: ModelId| (m.index, m.generation);
+
+    // A 60-degree camera at the origin looking down +z: half its view at z = 10 is 5.77.
+    let mut camera = Camera::perspective(core::f32::consts::FRAC_PI_3, 1.0, 0.1, 100.0);
+    let (o, y, z) = (vec3(0.0, 0.0, 0.0), vec3(0.0, 1.0, 0.0), vec3(0.0, 0.0, 10.0));
+    camera.look_at(o, z, y).unwrap();
+    let vp = camera.view_projection().unwrap();
+    let frustum = camera.frustum().unwrap();
+    let from_matrix = Frustum::from_matrix(&vp).unwrap();
+    for (a, b) in frustum.0.planes.iter().flatten().zip(from_matrix.0.planes.iter().flatten()) {
+        assert!(close(*a, *b, 1e-4), "{:?} against {:?}", frustum.0.planes, from_matrix.0.planes);
+    }
+    assert_eq!(ids(scene.query_frustum(&frustum).unwrap()), vec![id(ahead), id(right), id(above)]);
+    assert_eq!(ids(scene.query_frustum_masked(&frustum, 2).unwrap()), vec![id(right)]);
+    let (cx, cy, cz, r) = ([0.0, 5.0, 0.0, 0.0], [0.0, 0.0, 0.0, 5.0], [10.0, 10.0, -10.0, 10.0], [1.0; 4]);
+    let mut visible = [false; 4];
+    frustum.cull_spheres(&Spheres { center: [&cx, &cy, &cz], radius: &r }, &mut visible).unwrap();
+    assert_eq!(visible, [true, true, false, true]);
+    assert_eq!(frustum.cull_spheres(&Spheres { center: [&cx, &cy, &cz], radius: &r }, &mut visible[..2]).unwrap_err().status(), Status::InvalidCount);
+
+    // The picking ray through the viewport's centre runs down +z from the near plane.
+    let (origin, dir) = camera.picking_ray((50.0, 50.0), (100.0, 100.0)).unwrap();
+    assert!(close(origin.z, 0.1, 1e-5) && close(dir.z, 1.0, 1e-6) && close(dir.x, 0.0, 1e-6));
+    let hit = scene.pick(&camera, (50.0, 50.0), (100.0, 100.0)).unwrap().expect("the sphere ahead");
+    assert_eq!(id(hit.model), id(ahead));
+    assert!(close(hit.point[2], 9.0, 1e-4) && close(hit.normal[2], -1.0, 1e-4) && close(hit.t, 8.9, 1e-4));
+    assert!(scene.pick_masked(&camera, (50.0, 50.0), (100.0, 100.0), 2).unwrap().is_none());
+    assert!(scene.pick(&camera, (50.0, 50.0), (0.0, 0.0)).is_err());
+
+    // Boxes: an AABB around the sphere ahead; an OBB spanning both spheres at z = 10, then
+    // the same turned a quarter about z (it then runs along y between them: nothing).
+    assert_eq!(ids(scene.query_aabb(z, vec3(1.5, 1.5, 1.5)).unwrap()), vec![id(ahead)]);
+    assert!(scene.query_aabb_masked(z, vec3(1.5, 1.5, 1.5), 2).unwrap().is_empty());
+    let (c, h) = (vec3(2.5, 0.0, 10.0), vec3(3.0, 0.5, 0.5));
+    let straight = [vec3(1.0, 0.0, 0.0), vec3(0.0, 1.0, 0.0), vec3(0.0, 0.0, 1.0)];
+    let turned = [vec3(0.0, 1.0, 0.0), vec3(-1.0, 0.0, 0.0), vec3(0.0, 0.0, 1.0)];
+    assert_eq!(ids(scene.query_obb(c, h, straight).unwrap()), vec![id(ahead), id(right)]);
+    assert_eq!(ids(scene.query_obb_masked(c, h, straight, 2).unwrap()), vec![id(right)]);
+    assert!(scene.query_obb(c, h, turned).unwrap().is_empty());
+    assert!(scene.query_aabb(vec3(f32::NAN, 0.0, 0.0), h).is_err());
+
+    // An orthographic camera 4 m wide sees only the sphere straight ahead.
+    let mut ortho = Camera::orthographic(4.0, 4.0, 0.1, 100.0);
+    ortho.look_at(o, z, y).unwrap();
+    assert_eq!(ids(scene.query_frustum(&ortho.frustum().unwrap()).unwrap()), vec![id(ahead)]);
+    // A failed look_at leaves the camera as it was.
+    let before = ortho.0.orientation;
+    assert!(ortho.look_at(o, o, y).is_err());
+    assert_eq!(ortho.0.orientation, before);
+    let _ = behind;
+}
+
+#[test]
 fn convex_pair_queries_over_slices() {
     let a = [ConvexShape::sphere(1.0), ConvexShape::cuboid(vec3(1.0, 1.0, 1.0)), ConvexShape::sphere(0.5)];
     let b = [ConvexShape::sphere(1.0), ConvexShape::cuboid(vec3(1.0, 1.0, 1.0)), ConvexShape::cuboid(vec3(1.0, 1.0, 1.0))];
