@@ -29,6 +29,8 @@ class BvhRefit {
   /// block and node -> parent node) and each node's and leaf block's area; marks nothing.
   void link(const BoxBvh8& bvh, std::size_t items);
 
+  /// The leaf block holding `item` (kNoItem: none, or not linked).
+  uint32_t leaf_of(uint32_t item) const { return item < item_leaf_.size() ? item_leaf_[item] : kNoItem; }
   /// Marks the leaf block holding `item` and every node above it.
   void mark_item(uint32_t item);
   /// Marks every node and leaf block (a refit of the whole tree).
