@@ -189,9 +189,9 @@ impl Scene {
 
     /// The models overlapping a sphere whose layers share a bit with `mask`, ascending.
     pub fn query_sphere_masked(&self, center: Vec3, radius: f32, mask: u32) -> Result<Vec<ModelId>> {
-        let (cx, cy, cz, r) = ([center.x], [center.y], [center.z], [radius]);
-        let sphere = sys::gyro_sphere_soa { cx: cx.as_ptr(), cy: cy.as_ptr(), cz: cz.as_ptr(), r: r.as_ptr() };
-        self.query_shape(sys::GYRO_SHAPE_SPHERE, sys::gyro_shape_soa_as { sphere }, mask)
+        let v = [[center.x], [center.y], [center.z], [radius]];
+        let [cx, cy, cz, r] = columns(&v);
+        self.query_shape(sys::GYRO_SHAPE_SPHERE, sys::gyro_shape_soa_as { sphere: sys::gyro_sphere_soa { cx, cy, cz, r } }, mask)
     }
 
     /// The models overlapping an axis-aligned box (centre, half extents), ascending.
@@ -201,16 +201,10 @@ impl Scene {
 
     /// `query_aabb` among the models whose layers share a bit with `mask`.
     pub fn query_aabb_masked(&self, center: Vec3, half_extents: Vec3, mask: u32) -> Result<Vec<ModelId>> {
-        let (c, e) = (xyz1(center), xyz1(half_extents));
-        let aabb = sys::gyro_aabb_soa {
-            cx: c[0].as_ptr(),
-            cy: c[1].as_ptr(),
-            cz: c[2].as_ptr(),
-            ex: e[0].as_ptr(),
-            ey: e[1].as_ptr(),
-            ez: e[2].as_ptr(),
-        };
-        self.query_shape(sys::GYRO_SHAPE_AABB, sys::gyro_shape_soa_as { aabb }, mask)
+        let (c, e) = (center, half_extents);
+        let v = [[c.x], [c.y], [c.z], [e.x], [e.y], [e.z]];
+        let [cx, cy, cz, ex, ey, ez] = columns(&v);
+        self.query_shape(sys::GYRO_SHAPE_AABB, sys::gyro_shape_soa_as { aabb: sys::gyro_aabb_soa { cx, cy, cz, ex, ey, ez } }, mask)
     }
 
     /// The models overlapping an oriented box: centre, half extents and its unit axes (the
@@ -221,25 +215,13 @@ impl Scene {
 
     /// `query_obb` among the models whose layers share a bit with `mask`.
     pub fn query_obb_masked(&self, center: Vec3, half_extents: Vec3, axes: [Vec3; 3], mask: u32) -> Result<Vec<ModelId>> {
-        let (c, e) = (xyz1(center), xyz1(half_extents));
-        let u = axes.map(xyz1);
-        let obb = sys::gyro_obb_soa {
-            cx: c[0].as_ptr(),
-            cy: c[1].as_ptr(),
-            cz: c[2].as_ptr(),
-            ex: e[0].as_ptr(),
-            ey: e[1].as_ptr(),
-            ez: e[2].as_ptr(),
-            u0x: u[0][0].as_ptr(),
-            u0y: u[0][1].as_ptr(),
-            u0z: u[0][2].as_ptr(),
-            u1x: u[1][0].as_ptr(),
-            u1y: u[1][1].as_ptr(),
-            u1z: u[1][2].as_ptr(),
-            u2x: u[2][0].as_ptr(),
-            u2y: u[2][1].as_ptr(),
-            u2z: u[2][2].as_ptr(),
-        };
+        let (c, e, [u0, u1, u2]) = (center, half_extents, axes);
+        let v = [
+            [c.x], [c.y], [c.z], [e.x], [e.y], [e.z],
+            [u0.x], [u0.y], [u0.z], [u1.x], [u1.y], [u1.z], [u2.x], [u2.y], [u2.z],
+        ];
+        let [cx, cy, cz, ex, ey, ez, u0x, u0y, u0z, u1x, u1y, u1z, u2x, u2y, u2z] = columns(&v);
+        let obb = sys::gyro_obb_soa { cx, cy, cz, ex, ey, ez, u0x, u0y, u0z, u1x, u1y, u1z, u2x, u2y, u2z };
         self.query_shape(sys::GYRO_SHAPE_OBB, sys::gyro_shape_soa_as { obb }, mask)
     }
 
@@ -290,9 +272,10 @@ impl Scene {
 /// mesh model the triangle and its barycentrics.
 pub type PickHit = sys::gyro_scene_hit;
 
-/// A vector as three one-element arrays: shape 0 of a structure-of-arrays view.
-fn xyz1(v: Vec3) -> [[f32; 1]; 3] {
-    [[v.x], [v.y], [v.z]]
+/// Shape 0 of a structure-of-arrays view: a pointer to each one-element column of
+/// `values`, valid while `values` lives.
+fn columns<const N: usize>(values: &[[f32; 1]; N]) -> [*const f32; N] {
+    core::array::from_fn(|k| values[k].as_ptr())
 }
 
 /// The ids a counting query gives: asked once for the count, then into a buffer that size
