@@ -1228,6 +1228,65 @@ TEST(Scene, EveryModelMovedGivesTheSameBitsAtAnyThreadCount) {
   }
 }
 
+// Moving every model stages the spheres for the refit as they are placed; a world query
+// (model()) places them at once, and moves after it, before the tree is used, must still
+// reach the tree: they place those models again and the refit stages every model afresh.
+// The rays must equal a scene that rebuilds, frame after frame.
+TEST(Scene, MovesAfterAWorldQueryStillReachTheRefitTree) {
+  constexpr std::size_t kModels = 3000;
+  const std::vector<std::shared_ptr<const TriangleMesh>> meshes = test_meshes();
+  const auto run = [&](bool refit, std::size_t* refits) {
+    SceneSettings settings;
+    settings.refit = refit;
+    Scene scene(settings);
+    SplitMix64 rng(411);
+    std::vector<ModelId> ids(kModels);
+    std::vector<ModelTransform> local(kModels);
+    const std::vector<ModelId> no_parents;
+    for (std::size_t i = 0; i < kModels; ++i) {
+      const ModelDef d = random_def(rng, meshes, no_parents, 80.0f);
+      EXPECT_EQ(scene.add_model(d, &ids[i]), Status::ok);
+      local[i] = d.transform;
+    }
+    scene.prepare();
+    const Rays rays = make_rays(snapshot(scene), 400, 412);
+    std::vector<float> t;
+    std::vector<ModelId> hit;
+    for (int frame = 0; frame < 4; ++frame) {
+      for (std::size_t i = 0; i < kModels; ++i) {
+        local[i].position = local[i].position + vec3{uni(rng, -0.4, 0.4), uni(rng, -0.4, 0.4), uni(rng, -0.4, 0.4)};
+        EXPECT_EQ(scene.set_transform(ids[i], local[i]), Status::ok);
+      }
+      ModelInfo info;
+      EXPECT_EQ(scene.model(ids[frame], &info), Status::ok);  // the world placed, the tree not yet
+      // A few models carried far (beyond the next frame's reach of the others), so a refit
+      // that missed them would answer the rays from their old places.
+      for (std::size_t i = std::size_t(frame); i < kModels; i += 37) {
+        local[i].position = local[i].position + vec3{uni(rng, -20.0, 20.0), uni(rng, -20.0, 20.0), uni(rng, -20.0, 20.0)};
+        EXPECT_EQ(scene.set_transform(ids[i], local[i]), Status::ok);
+      }
+      Columns c(rays.set.size());
+      EXPECT_EQ(raycast_closest(scene, rays.view(), rays.set.size(), c.out()), Status::ok);
+      t.insert(t.end(), c.t.begin(), c.t.end());
+      hit.insert(hit.end(), c.model.begin(), c.model.end());
+    }
+    *refits = scene.stats().refits;
+    return std::make_pair(t, hit);
+  };
+  std::size_t refits = 0, none = 0;
+  const auto refit = run(true, &refits);
+  const auto fresh = run(false, &none);
+  EXPECT_GE(refits, 3u);  // the frames refit (a move that spoils the tree may rebuild one)
+  EXPECT_EQ(none, 0u);
+  std::size_t hits = 0;
+  for (std::size_t r = 0; r < refit.first.size(); ++r) {
+    ASSERT_EQ(refit.second[r], fresh.second[r]) << "ray " << r;
+    ASSERT_EQ(bits(refit.first[r]), bits(fresh.first[r])) << "ray " << r;
+    hits += !refit.second[r].is_null();
+  }
+  EXPECT_GT(hits, refit.first.size() / 4);
+}
+
 TEST(Scene, PickHitsTheModelUnderTheCursor) {
   Scene scene;
   ModelDef d;
