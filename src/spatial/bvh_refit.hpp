@@ -123,11 +123,15 @@ class BvhRefit {
   // parallel tasks (R1's 10^4 spheres: 64 tasks of about 47 nodes, 9 nodes above them);
   // task t holds nodes [task_root_[t], task_end_[t]); top_ holds the rest, ascending.
   static constexpr uint32_t kTaskNodes = 128;
-  // Marked nodes from which the tasks run in parallel. A refit is memory-bound: on a 2-core
-  // AVX2 VM, refitting every node of R1M's 10^4 spheres took 0.13 ms on one thread and
-  // 0.26-0.32 on two (the lines each thread writes move between the cores), 10^5 spheres
-  // (30k nodes) 2.7-3.3 ms either way, 3 * 10^5 11-12 against 8.6-9.6.
-  static constexpr std::size_t kParallelNodes = 16384;
+  // Marked nodes from which the tasks run in parallel. When the refit gathered each moved
+  // model's placement itself, two threads lost (R1M's 10^4 spheres, every node: 0.13 ms on
+  // one thread, 0.26-0.32 on two, the placements' lines moving between the cores) and the
+  // threshold was 16,384. With the boxes staged by leaf first (scene.cpp), two threads win
+  // from a few hundred marked nodes (a 2-core AVX-512 VM, median prepare() a frame, 2
+  // threads, 16,384 against 512: 10^4 spheres all moved 0.47-0.50 -> 0.36-0.37 ms, a tenth
+  // moved 0.187 -> 0.153, a hundredth 0.034 either way (128: 0.036); 3 * 10^4 spheres all
+  // moved 1.66 -> 0.94, 10^5 4.2 -> 3.6; one thread unchanged).
+  static constexpr std::size_t kParallelNodes = 512;
   std::size_t parallel_nodes_ = kParallelNodes;
   std::vector<uint32_t> task_root_, task_end_, top_;
   // What each task (and, last, the top) changed and was asked to revisit; and whether its
