@@ -405,8 +405,9 @@ GYRO_API void gyro_scene_destroy(gyro_scene* scene);
 /** Sets the scene's gyro_ray_prefetch (ABI 1.7). NULL_ARGUMENT, or INVALID_ARGUMENT for an
  *  unknown mode; either changes nothing. */
 GYRO_API gyro_status gyro_scene_set_ray_prefetch(gyro_scene* scene, gyro_ray_prefetch mode);
-/** Whether moves alone (gyro_scene_set_transform) refit the scene's BVH instead of rebuilding
- *  it (ABI 1.8; 1, the default, or 0): see SceneSettings::refit in gyro/scene.hpp. Hits are
+/** Whether moves (gyro_scene_set_transform), and adds and removes in a scene without parents,
+ *  refit the scene's BVH instead of rebuilding it (ABI 1.8; 1, the default, or 0): see
+ *  SceneSettings::refit in gyro/scene.hpp. Hits are
  *  the same either way, except which model an any hit names, which then depends on the
  *  sequence of calls, not on the models alone. NULL_ARGUMENT, or INVALID_ARGUMENT for a
  *  value other than 0 and 1; either changes nothing. */

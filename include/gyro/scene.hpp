@@ -27,7 +27,8 @@
 //  - Changes (add, remove, set_transform, set_parent, configure) mark the world
 //    transforms and the tree dirty; the next query (or prepare()) recomputes them, from
 //    the set of models alone (models taken in id order), so equal scenes give equal trees
-//    (with SceneSettings::refit, moves alone refit the tree and redo only what moved).
+//    (with SceneSettings::refit, moves, and adds and removes without parents, refit the
+//    tree and redo only what changed).
 //    const queries may run concurrently; the first one after a change rebuilds under a
 //    lock. Changes must not run alongside queries.
 //  - Layers: each model is in the layers of ModelDef::layers (32 bits, all by default);
@@ -167,9 +168,16 @@ struct SceneSettings {
   OctreeDef octree;                    ///< used when accel == octree
   RayPrefetch ray_prefetch = RayPrefetch::automatic;  ///< for rays in either mode
   /// Under the BVH, when only transforms changed since the last build (set_transform, no
-  /// add, remove, set_parent or configure) and every model stays placed, the next query
-  /// refits the tree (new boxes over the same topology) instead of rebuilding it, unless
-  /// the refit tree's expected ray cost exceeds kSceneRefitCost times the last build's.
+  /// set_parent or configure), the next query refits the tree (new boxes over the same
+  /// topology) instead of rebuilding it, unless the refit tree's expected ray cost exceeds
+  /// kSceneRefitCost times the last build's. In a scene where no model has a parent, adds
+  /// and removes keep the tree too: a removed model's leaf is taken out, a new model's put
+  /// where its box grows the tree least (a new node beside a leaf where the nodes on the way
+  /// are full), and a model whose placement overflows leaves the tree and comes back the same
+  /// way; then the refit. One sphere removed and one added a frame in R1's 10^4 spheres takes
+  /// 0.019 ms against 7.0 ms for the rebuild it replaced (100 of each: 0.18 ms against 36;
+  /// after 2 * 10^4 of them rays run 0.92x as fast as on a fresh tree; a /tmp driver, one
+  /// thread). The tree rebuilds when half its items have been taken out since the build.
   /// A refit, like the world transforms before it, redoes only what the moves since the
   /// last query touched: the moved models and their descendants, the leaves holding them and
   /// the nodes above those. On R1's 10^4 spheres (one thread, gyro-bench R1M), prepare()

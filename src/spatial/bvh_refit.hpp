@@ -65,6 +65,12 @@ class BvhRefit {
     // they are in its cache.
     bvh_orders_refresh_fn* const refresh = GYRO_DISPATCH(bvh_orders_refresh);
     for (Part& part : parts_) part.changed_count = 0, part.revisit.clear(), part.ok = true;
+    // The nodes attach() added, numbered after every linked one, each after its parent, and
+    // with no linked node below them: first, children before parents.
+    extra_.changed_count = 0, extra_.revisit.clear(), extra_.ok = true;
+    for (std::size_t i = bvh.nodes.size(); i-- > linked_nodes_;)
+      if (node_mark_[i]) refit_node(bvh, uint32_t(i), box, store, extra_);
+    refresh(bvh.nodes.data(), extra_.changed.data(), extra_.changed_count);
     const auto run_task = [&](std::size_t t) {
       const uint32_t root = task_root_[t];
       if (!node_mark_[root]) return;  // nor any node below it
@@ -86,7 +92,8 @@ class BvhRefit {
       if (node_mark_[top_[k]]) refit_node(bvh, top_[k], box, store, top);
     refresh(bvh.nodes.data(), top.changed.data(), top.changed_count);
     // The parts in a fixed order (the tasks', then the top's): the same list at any thread count.
-    revisit_.clear();
+    if (!extra_.ok) return false;
+    revisit_.assign(extra_.revisit.begin(), extra_.revisit.end());
     for (const Part& part : parts_) {
       if (!part.ok) return false;
       revisit_.insert(revisit_.end(), part.revisit.begin(), part.revisit.end());
@@ -105,6 +112,22 @@ class BvhRefit {
   /// The leaves whose box() returned true in the last refit(), in an order fixed by the tree.
   const std::vector<uint32_t>& revisit() const { return revisit_; }
 
+  /// Takes `item` out of the tree: its leaf block's slot in its node becomes empty (bounds
+  /// +inf, -inf), the block holds no item and is kept for attach(), and the node and those
+  /// above it are marked, the node as changed whatever its other slots do, so the next
+  /// refit() unites what is left and sorts the node's orders again. False (nothing changed)
+  /// when the item has no leaf block. Only for a one-item leaf block (the scene's).
+  bool detach(BoxBvh8& bvh, uint32_t item);
+  /// Puts a new item (one with no leaf block) into the tree with box [lo, hi]: from the root
+  /// down through the node child whose box grows least (ties: the lower slot) to the first
+  /// node with an empty slot, or at a full node of leaves, into a new node (appended to
+  /// bvh.nodes) shared with the leaf whose union with the box is least; in a leaf block that
+  /// detach() freed (the last one) or a new one at the end of bvh.leaves. Marks the block and
+  /// the nodes above it for the next refit(), which writes their boxes and orders. Returns
+  /// the leaf block, or kNoItem (nothing changed) when the new node would pass kBvhMaxDepth:
+  /// the caller then rebuilds. The same boxes in the same order give the same tree.
+  uint32_t attach(BoxBvh8& bvh, uint32_t item, const float lo[3], const float hi[3]);
+
   void clear_marks();
   /// Heap bytes held (the links, areas and marks).
   std::size_t bytes() const;
@@ -117,6 +140,9 @@ class BvhRefit {
   std::vector<BoxUnion> node_box_;
   std::vector<uint8_t> node_changed_;
   std::vector<uint8_t> node_mark_, leaf_mark_;
+  std::vector<uint8_t> node_forced_;     // by node: detach() emptied one of its slots
+  std::vector<uint32_t> forced_nodes_;   // what clear_marks() resets
+  std::vector<uint32_t> free_leaves_;    // blocks detach() emptied, reused last first
   std::vector<uint32_t> marked_nodes_, marked_leaves_;  // what clear_marks() resets
   std::vector<uint32_t> revisit_;
   // Subtrees of at most kTaskNodes nodes, each as large as it can be, that refit() runs as
@@ -144,6 +170,8 @@ class BvhRefit {
     bool ok = true;
   };
   std::vector<Part> parts_;
+  Part extra_;                     // the nodes attach() added (from linked_nodes_ on)
+  std::size_t linked_nodes_ = 0;   // the nodes link() saw
   bool all_marked_ = false;
 
   // Node i's slots from its marked children (refit()'s body for one node).
@@ -174,7 +202,7 @@ class BvhRefit {
         if (again) part.revisit.push_back(l);
         leaf_area_[l] = slot.half_area();
       } else {
-        if (code <= i) {
+        if (code <= i || code >= bvh.nodes.size()) {
           part.ok = false;
           return;
         }
@@ -184,7 +212,8 @@ class BvhRefit {
       for (int a = 0; a < 3; ++a) rows[2 * a][k] = slot.lo[a], rows[2 * a + 1][k] = slot.hi[a];
     }
     BoxUnion own;
-    const bool changed = store(n, rows, own.lo, own.hi);  // the bits compared, as the build's
+    // The bits compared, as the build's; a slot detach() emptied is already in the bounds.
+    const bool changed = store(n, rows, own.lo, own.hi) || node_forced_[i];
     node_changed_[i] = changed;
     if (!changed) return;
     part.changed[part.changed_count++] = i;

@@ -372,6 +372,18 @@ struct Scene::Impl {
   // other placement, and by refit_bvh(), which stages what is left.
   bool spheres_staged = false;
   std::vector<uint8_t> chunk_other;
+  // Adds and removes of root models in a scene without parents keep the tree (patch_tree()):
+  // a removed model's item is detached at the next build_tree(), a new one attached, and the
+  // tree refit. tree_slots keeps a hole (kNoIndex) for each item taken out since the build.
+  std::vector<uint32_t> detached;
+  std::size_t tree_holes = 0;
+
+  // Whether an add or remove can keep the placements (and so maybe the tree): the world was
+  // placed since the last structural change and no model has a parent (so removing one
+  // reparents none, and the placement order is the slots').
+  bool patchable() const {
+    return !world_all && child_begin.empty() && placed.size() == pool.size() && place_order.size() == pool.size();
+  }
 
   void changed() {
     world_ready.store(false, std::memory_order_relaxed);
@@ -536,6 +548,11 @@ struct Scene::Impl {
   }
 
   void build_tree() {
+    if (!rebuild && (items_changed || !detached.empty()) && patch_tree()) {
+      ++refits;
+      tree_settled();
+      return;
+    }
     // Moves that placed or unplaced no model keep the items (and the plane list) as they are.
     bool same_items = !rebuild && !items_changed;
     if (!same_items) {
@@ -561,6 +578,8 @@ struct Scene::Impl {
     }
     tree_settled();
     rebuild = false;
+    detached.clear();
+    tree_holes = 0;
     ++builds;
     built = settings.accel;
     bvh = detail::BoxBvh8{};
@@ -664,6 +683,55 @@ struct Scene::Impl {
       for (uint32_t l : leaf_again) write_ray_leaf(l);
     links.clear_marks();
     return keep;
+  }
+
+  // The tree's items brought up to the models without a build: the removed models' items
+  // and those of models no longer placed detached, the newly placed ones attached (in slot
+  // order, each where its box grows the tree least: BvhRefit::attach), then the refit of what
+  // changed. False when that cannot be done (no node on an attach's path has room, half the
+  // items are holes, or the refit's cost check fails): the caller rebuilds from the models,
+  // which overwrites whatever this wrote.
+  bool patch_tree() {
+    if (!refit_linked()) return false;
+    for (uint32_t item : detached) links.detach(bvh, item);
+    detached.clear();
+    std::vector<uint32_t> planes;
+    bool attached = false;
+    for (uint32_t s = 0; s < pool.size(); ++s) {
+      const Placed& p = placed[s];
+      if (p.placed && p.shape == ModelShape::plane) planes.push_back(s);
+      const bool want = p.placed && p.shape != ModelShape::plane;
+      const uint32_t item = slot_item[s];
+      if (want == (item != kNoIndex)) continue;
+      if (!want) {
+        links.detach(bvh, item);
+        tree_slots[item] = kNoIndex, slot_item[s] = kNoIndex;
+        ++tree_holes;
+        continue;
+      }
+      const Corners c(p);
+      const uint32_t next = uint32_t(tree_slots.size());
+      const uint32_t l = links.attach(bvh, next, c.lo, c.hi);
+      if (l == detail::kNoItem) return false;
+      tree_slots.push_back(s), slot_item[s] = next;
+      if (ray_leaves.size() < bvh.leaves.size()) {
+        ray_leaves.resize(bvh.leaves.size());
+        ray_leaves[l].box_block = detail::kNoItem;
+      }
+      write_ray_leaf(l);
+      if (!tree_all && !replaced_mark[s]) replaced_mark[s] = 1, replaced.push_back(s);
+      attached = true;
+    }
+    if (2 * tree_holes > tree_slots.size()) return false;  // compacted by a build
+    const auto by_index = [&](uint32_t a, uint32_t b) { return placed[a].index < placed[b].index; };
+    if (!std::is_sorted(planes.begin(), planes.end(), by_index)) std::sort(planes.begin(), planes.end(), by_index);
+    plane_slots = std::move(planes);
+    if (attached) spheres_staged = false;  // compute_world() could not stage what had no leaf
+    if (!refit_bvh()) return false;
+    const std::size_t bytes = bvh.nodes.size() * sizeof(detail::BvhNode8) +
+                              ray_leaves.size() * sizeof(detail::SceneLeaf) + ray_boxes.size() * sizeof(detail::SceneBox);
+    rays_large = bytes > kFetchBytes;
+    return true;
   }
 
   // Whether the tree is one refit_bvh() may refit over the current slots (it still checks
@@ -835,10 +903,23 @@ Status Scene::add_model(const ModelDef& def, ModelId* out) {
   if (m.pool.size() >= kMaxCount) return fail(Status::invalid_count, "a scene holds at most 2^31 - 1 models");
   ModelDef d = def;
   d.transform = normalized_transform(def.transform);
+  // A root model added to a scene without parents is placed as a move of its own slot and
+  // attached to the tree (patch_tree()); anything else places every model and rebuilds.
+  const bool patch = m.patchable() && def.parent.is_null();
   const ModelId id = id_of(m.pool.create());
   m.defs.push_back(std::move(d));
-  m.rebuild = true;
-  m.world_all = true;
+  if (patch) {
+    const uint32_t s = uint32_t(m.defs.size() - 1);
+    m.placed.push_back(Placed{});  // not placed until compute_world()
+    m.place_order.push_back(s);
+    m.moved_mark.push_back(0);
+    m.replaced_mark.push_back(0);
+    if (m.slot_item.size() == s) m.slot_item.push_back(kNoIndex);
+    m.note_move(s);
+  } else {
+    m.rebuild = true;
+    m.world_all = true;
+  }
   m.changed();
   *out = id;
   return Status::ok;
@@ -848,17 +929,50 @@ Status Scene::remove_model(ModelId id) {
   Impl& m = *impl_;
   if (!m.pool.valid(to_detail(id))) return fail(Status::stale_id, "model {%u, %u} is not live", id.index, id.generation);
   m.ensure_world();
-  for (uint32_t s = 0; s < m.pool.size(); ++s) {
-    ModelDef& d = m.defs[s];
-    if (!(d.parent == id)) continue;
-    if (m.placed[s].placed) d.transform = m.placed[s].world;
-    d.parent = ModelId{};
+  // In a scene without parents the placements stay, the last slot's moved into the gap,
+  // and the tree loses the model's item at the next build_tree() (patch_tree()).
+  const bool patch = m.patchable() && m.moved.empty();  // ensure_world() placed the moves
+  if (!patch) {
+    for (uint32_t s = 0; s < m.pool.size(); ++s) {
+      ModelDef& d = m.defs[s];
+      if (!(d.parent == id)) continue;
+      if (m.placed[s].placed) d.transform = m.placed[s].world;
+      d.parent = ModelId{};
+    }
   }
+  const std::size_t before = m.pool.size();
   const detail::IdPool::Removal r = m.pool.destroy(to_detail(id));
   if (r.moved_from != r.slot) m.defs[r.slot] = std::move(m.defs[r.moved_from]);
   m.defs.pop_back();
-  m.rebuild = true;
-  m.world_all = true;
+  if (patch) {
+    const bool moved = r.moved_from != r.slot;
+    if (m.slot_item.size() == before) {
+      const uint32_t item = m.slot_item[r.slot];
+      if (item != kNoIndex) m.tree_slots[item] = kNoIndex, m.detached.push_back(item), ++m.tree_holes;
+      if (moved) {
+        const uint32_t kept = m.slot_item[r.moved_from];
+        m.slot_item[r.slot] = kept;
+        if (kept != kNoIndex) m.tree_slots[kept] = r.slot;
+      }
+      m.slot_item.pop_back();
+    }
+    if (moved) m.placed[r.slot] = m.placed[r.moved_from];
+    m.placed.pop_back();
+    m.place_order.pop_back();  // the slots in order: no model has a parent
+    m.moved_mark.pop_back();   // none is marked: ensure_world() placed the moves
+    std::erase(m.replaced, r.slot);
+    if (moved) {
+      for (uint32_t& s : m.replaced)
+        if (s == r.moved_from) s = r.slot;
+      m.replaced_mark[r.slot] = m.replaced_mark[r.moved_from];
+    }
+    m.replaced_mark.pop_back();
+    m.items_changed = true;
+    m.spheres_staged = false;
+  } else {
+    m.rebuild = true;
+    m.world_all = true;
+  }
   m.changed();
   return Status::ok;
 }
@@ -953,15 +1067,16 @@ SceneStats Scene::stats() const {
   SceneStats s;
   s.accel = m.built;
   s.models = m.pool.size();
-  s.tree_models = m.tree_slots.size();
+  s.tree_models = m.tree_slots.size() - m.tree_holes;
   s.planes = m.plane_slots.size();
   s.builds = m.builds, s.refits = m.refits;
   if (m.built == SceneAccel::bvh) s.sah_cost = m.bvh.stats.sah_cost;
   // Both modes' rays walk m.bvh (under the octree, its node form: octree_bvh.hpp).
   s.bytes = m.bvh.stats.bytes + m.ray_leaves.size() * sizeof(detail::SceneLeaf) + m.ray_boxes.size() * sizeof(detail::SceneBox);
   if (m.built == SceneAccel::bvh) {
-    s.nodes = m.bvh.stats.nodes, s.leaves = m.bvh.stats.leaves, s.max_depth = m.bvh.stats.max_depth;
-    s.references = m.tree_slots.size();
+    // Adds and removes since the build (patch_tree()) add leaf blocks and holes.
+    s.nodes = m.bvh.nodes.size(), s.leaves = m.bvh.leaves.size(), s.max_depth = m.bvh.stats.max_depth;
+    s.references = m.tree_slots.size() - m.tree_holes;
   } else {
     const OctreeStats o = m.octree.stats();
     s.nodes = o.nodes, s.leaves = o.leaves, s.max_depth = o.max_depth, s.references = o.references, s.bytes += o.bytes;

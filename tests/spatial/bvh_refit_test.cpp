@@ -253,17 +253,24 @@ void recompute_all(detail::BoxBvh8& bvh, const std::vector<Item>& items) {
   bvh.stats.sah_cost = detail::sah_cost(node_area.data(), node_area.size(), leaf_area.data(), leaf_area.size());
 }
 
-TEST(BvhRefit, MarkedNodesEqualEveryNodeRecomputed) {
-  SplitMix64 rng(43);
-  const std::size_t n = 3000;
-  std::vector<Item> items(n);
+// A tree built over n random items, and its links.
+detail::BoxBvh8 linked_tree(SplitMix64& rng, std::size_t n, std::vector<Item>& items, detail::BvhRefit& links) {
+  items.resize(n);
   for (Item& b : items) b = random_item(rng);
   std::vector<detail::BvhBox> boxes(n);
   for (std::size_t i = 0; i < n; ++i)
     for (int a = 0; a < 3; ++a) boxes[i].lo[a] = items[i].lo[a], boxes[i].hi[a] = items[i].hi[a];
   detail::BoxBvh8 bvh = detail::build_box_bvh8(boxes.data(), n);
-  detail::BvhRefit links;
   links.link(bvh, n);
+  return bvh;
+}
+
+TEST(BvhRefit, MarkedNodesEqualEveryNodeRecomputed) {
+  SplitMix64 rng(43);
+  const std::size_t n = 3000;
+  std::vector<Item> items;
+  detail::BvhRefit links;
+  detail::BoxBvh8 bvh = linked_tree(rng, n, items, links);
   EXPECT_GT(links.task_count(), 2u);  // the tree is split for the parallel refit
   links.set_parallel_nodes(256);       // in parallel from 256 marked nodes (every round of 2^8 moves and more)
   std::size_t unchanged_rounds = 0;
@@ -330,4 +337,108 @@ TEST(BvhRefit, MarkedNodesEqualEveryNodeRecomputed) {
 }
 
 }  // namespace
+// Items taken out (detach) and put in (attach: a free slot on the least-growth path, or a
+// new node shared with a leaf, numbered after every other), then refit: the bytes of every
+// node recomputed from the items, at 1 to 3 threads; every live item in exactly one leaf
+// reachable from the root, within kBvhMaxDepth. Clusters of items in one spot fill a node of
+// leaves and make new nodes under new nodes (which the refit must take children first); a
+// node whose last child leaves is taken out of its parent.
+TEST(BvhRefit, AttachAndDetachEqualEveryNodeRecomputed) {
+  SplitMix64 rng(47);
+  std::size_t n = 400;
+  std::vector<Item> items;
+  detail::BvhRefit links;
+  detail::BoxBvh8 bvh = linked_tree(rng, n, items, links);
+  links.set_parallel_nodes(64);
+  const std::size_t nodes0 = bvh.nodes.size();
+  std::vector<uint8_t> live(n, 1);
+  const uint32_t saved = thread_count();
+  for (int round = 0; round < 30; ++round) {
+    const std::size_t outs = rng.next() % 40, ins = rng.next() % 40;
+    for (std::size_t k = 0; k < outs; ++k) {
+      const uint32_t i = uint32_t(rng.next() % n);
+      EXPECT_EQ(links.detach(bvh, i), live[i] != 0) << round;
+      live[i] = 0;
+    }
+    // Round 3 empties a whole subtree: every item under the root's first node child.
+    if (round == 3) {
+      std::vector<uint32_t> open;
+      for (uint32_t code : bvh.nodes[0].child)
+        if (code != detail::kEmptyChild && !(code & detail::kLeafBit)) {
+          open.push_back(code);
+          break;
+        }
+      while (!open.empty()) {
+        const BvhNode8& node = bvh.nodes[open.back()];
+        open.pop_back();
+        for (uint32_t code : node.child) {
+          if (code == detail::kEmptyChild) continue;
+          if (!(code & detail::kLeafBit)) {
+            open.push_back(code);
+            continue;
+          }
+          const uint32_t item = bvh.leaves[code & ~detail::kLeafBit].item[0];
+          if (item == detail::kNoItem) continue;
+          EXPECT_TRUE(links.detach(bvh, item));
+          live[item] = 0;
+        }
+      }
+    }
+    const float spot = float(rng.u() * 100.0);
+    for (std::size_t k = 0; k < ins; ++k) {
+      Item b = random_item(rng);
+      if (round % 2 == 1)  // a cluster: boxes within 10^-3 of one point
+        for (int a = 0; a < 3; ++a) b.lo[a] = spot + float(rng.u()) * 1e-3f, b.hi[a] = b.lo[a] + 1e-3f;
+      items.push_back(b);
+      live.push_back(1);
+      ASSERT_NE(links.attach(bvh, uint32_t(n), b.lo, b.hi), detail::kNoItem) << round;
+      EXPECT_EQ(links.attach(bvh, uint32_t(n), b.lo, b.hi), detail::kNoItem);  // already in
+      ++n;
+    }
+    // Some items moved as well.
+    for (int k = 0; k < 20; ++k) {
+      const uint32_t i = uint32_t(rng.next() % n);
+      if (!live[i]) continue;
+      items[i] = random_item(rng);
+      links.mark_item(i);
+    }
+    detail::BoxBvh8 ref;
+    ref.nodes.assign(bvh.nodes.begin(), bvh.nodes.end());
+    ref.leaves.assign(bvh.leaves.begin(), bvh.leaves.end());
+    recompute_all(ref, items);
+    set_thread_count(1u + uint32_t(round % 3));
+    ASSERT_TRUE(links.refit(bvh, [&](uint32_t, uint32_t item, float lo[3], float hi[3]) {
+      for (int a = 0; a < 3; ++a) lo[a] = items[item].lo[a], hi[a] = items[item].hi[a];
+      return false;
+    }));
+    set_thread_count(saved);
+    links.clear_marks();
+    ASSERT_EQ(bvh.nodes.size(), ref.nodes.size());
+    for (std::size_t i = 0; i < bvh.nodes.size(); ++i)
+      ASSERT_EQ(std::memcmp(&bvh.nodes[i], &ref.nodes[i], sizeof(BvhNode8)), 0) << "round " << round << " node " << i;
+    EXPECT_EQ(std::bit_cast<uint64_t>(bvh.stats.sah_cost), std::bit_cast<uint64_t>(ref.stats.sah_cost)) << round;
+    // Each live item once, from the root, within the walks' depth; no dead one.
+    std::vector<int> seen(n, 0);
+    std::vector<std::pair<uint32_t, std::size_t>> open{{0u, std::size_t(1)}};
+    std::size_t deepest = 0;
+    while (!open.empty()) {
+      const auto [i, depth] = open.back();
+      open.pop_back();
+      deepest = std::max(deepest, depth);
+      for (uint32_t code : bvh.nodes[i].child) {
+        if (code == detail::kEmptyChild) continue;
+        if (code & detail::kLeafBit) {
+          for (uint32_t item : bvh.leaves[code & ~detail::kLeafBit].item)
+            if (item != detail::kNoItem) ++seen[item];
+        } else {
+          open.push_back({code, depth + 1});
+        }
+      }
+    }
+    for (std::size_t i = 0; i < n; ++i) ASSERT_EQ(seen[i], int(live[i])) << "item " << i << " round " << round;
+    EXPECT_LE(deepest, detail::kBvhMaxDepth);
+  }
+  EXPECT_GT(bvh.nodes.size(), nodes0 + 10);  // the clusters made nodes
+}
+
 }  // namespace gyro

@@ -1058,8 +1058,9 @@ extern "C" {
     /// unknown mode; either changes nothing.
     pub fn gyro_scene_set_ray_prefetch(scene: *mut gyro_scene, mode: gyro_ray_prefetch) -> gyro_status;
 
-    /// Whether moves alone (gyro_scene_set_transform) refit the scene's BVH instead of rebuilding
-    /// it (ABI 1.8; 1, the default, or 0): see SceneSettings::refit in gyro/scene.hpp. Hits are
+    /// Whether moves (gyro_scene_set_transform), and adds and removes in a scene without parents,
+    /// refit the scene's BVH instead of rebuilding it (ABI 1.8; 1, the default, or 0): see
+    /// SceneSettings::refit in gyro/scene.hpp. Hits are
     /// the same either way, except which model an any hit names, which then depends on the
     /// sequence of calls, not on the models alone. NULL_ARGUMENT, or INVALID_ARGUMENT for a
     /// value other than 0 and 1; either changes nothing.
