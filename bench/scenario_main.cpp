@@ -13,6 +13,7 @@ void run_n1(const Options&);
 void run_g1(const Options&);
 void run_r1(const Options&);
 void run_r1m(const Options&);
+void run_r1a(const Options&);
 void run_r2(const Options&);
 void run_lidar(const Options&);
 void run_camera(const Options&);
@@ -34,6 +35,8 @@ const Workload kWorkloads[] = {
      run_r1},
     {"R1M", "R1's spheres as scene models, 120 frames moving all, 10%, 1%, 0.1% of them: prepare() refit vs rebuild, rays on "
      "the refit tree vs a fresh one", run_r1m},
+    {"R1A", "R1's spheres as scene models, 120 frames each removing and adding 1, 10, 100: the kept tree vs a rebuild, "
+     "rays on it vs a fresh one; peer: an Embree build per frame", run_r1a},
     {"R2", "10^6 rays onto a 522k-triangle terrain, closest hit through gyro's BVH; peers: Embree, Bullet", run_r2},
     {"LIDAR", "64 x 2048 lidar fan inside the R2 terrain, tmax 120; peers: Embree, Bullet", run_lidar},
     {"CAMERA", "1920 x 1080 primary rays over the R2 terrain; peers: Embree, Bullet", run_camera},
