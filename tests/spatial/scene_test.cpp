@@ -82,6 +82,20 @@ ModelDef random_def(SplitMix64& rng, const std::vector<std::shared_ptr<const Tri
   return d;
 }
 
+// n random models without parents in an 80-unit spread, their ids and transforms; then prepared.
+void add_root_models(Scene& scene, SplitMix64& rng, const std::vector<std::shared_ptr<const TriangleMesh>>& meshes,
+                     std::size_t n, std::vector<ModelId>& ids, std::vector<ModelTransform>& local) {
+  ids.assign(n, ModelId{});
+  local.assign(n, ModelTransform{});
+  const std::vector<ModelId> no_parents;
+  for (std::size_t i = 0; i < n; ++i) {
+    const ModelDef d = random_def(rng, meshes, no_parents, 80.0f);
+    EXPECT_EQ(scene.add_model(d, &ids[i]), Status::ok);
+    local[i] = d.transform;
+  }
+  scene.prepare();
+}
+
 struct TestScene {
   Scene scene;
   std::vector<std::shared_ptr<const TriangleMesh>> meshes = test_meshes();
@@ -1290,15 +1304,9 @@ TEST(Scene, EveryModelMovedGivesTheSameBitsAtAnyThreadCount) {
     settings.refit = refit;
     Scene scene(settings);
     SplitMix64 rng(301);
-    std::vector<ModelId> ids(kModels);
-    std::vector<ModelTransform> local(kModels);
-    const std::vector<ModelId> no_parents;
-    for (std::size_t i = 0; i < kModels; ++i) {
-      const ModelDef d = random_def(rng, meshes, no_parents, 80.0f);
-      EXPECT_EQ(scene.add_model(d, &ids[i]), Status::ok);
-      local[i] = d.transform;
-    }
-    scene.prepare();
+    std::vector<ModelId> ids;
+    std::vector<ModelTransform> local;
+    add_root_models(scene, rng, meshes, kModels, ids, local);
     const Rays rays = make_rays(snapshot(scene), 300, 302);
     Run r;
     for (int frame = 0; frame < kFrames; ++frame) {
@@ -1378,15 +1386,9 @@ TEST(Scene, MovesAfterAWorldQueryStillReachTheRefitTree) {
     settings.refit = refit;
     Scene scene(settings);
     SplitMix64 rng(411);
-    std::vector<ModelId> ids(kModels);
-    std::vector<ModelTransform> local(kModels);
-    const std::vector<ModelId> no_parents;
-    for (std::size_t i = 0; i < kModels; ++i) {
-      const ModelDef d = random_def(rng, meshes, no_parents, 80.0f);
-      EXPECT_EQ(scene.add_model(d, &ids[i]), Status::ok);
-      local[i] = d.transform;
-    }
-    scene.prepare();
+    std::vector<ModelId> ids;
+    std::vector<ModelTransform> local;
+    add_root_models(scene, rng, meshes, kModels, ids, local);
     const Rays rays = make_rays(snapshot(scene), 400, 412);
     std::vector<float> t;
     std::vector<ModelId> hit;
