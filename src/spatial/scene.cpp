@@ -616,9 +616,7 @@ struct Scene::Impl {
     // scene, one thread, one model per leaf: at 10^4 9.1 Mrays/s without against 7.2 with,
     // at 10^5 (9 MB of tree) 4.2-4.3 either way, at 3 * 10^5 2.4 against 2.5, at 10^6 1.15
     // against 1.56).
-    const std::size_t bytes = bvh.nodes.size() * sizeof(detail::BvhNode8) +
-                              ray_leaves.size() * sizeof(detail::SceneLeaf) + ray_boxes.size() * sizeof(detail::SceneBox);
-    rays_large = bytes > kFetchBytes;
+    rays_large = ray_bytes() > kFetchBytes;
     built_sah = bvh.stats.sah_cost;
   }
 
@@ -728,10 +726,14 @@ struct Scene::Impl {
     plane_slots = std::move(planes);
     if (attached) spheres_staged = false;  // compute_world() could not stage what had no leaf
     if (!refit_bvh()) return false;
-    const std::size_t bytes = bvh.nodes.size() * sizeof(detail::BvhNode8) +
-                              ray_leaves.size() * sizeof(detail::SceneLeaf) + ray_boxes.size() * sizeof(detail::SceneBox);
-    rays_large = bytes > kFetchBytes;
+    rays_large = ray_bytes() > kFetchBytes;
     return true;
+  }
+
+  // What the rays walk: the nodes, their leaves and box models.
+  std::size_t ray_bytes() const {
+    return bvh.nodes.size() * sizeof(detail::BvhNode8) + ray_leaves.size() * sizeof(detail::SceneLeaf) +
+           ray_boxes.size() * sizeof(detail::SceneBox);
   }
 
   // Whether the tree is one refit_bvh() may refit over the current slots (it still checks
