@@ -27,6 +27,7 @@
 #include <bit>
 #include <cmath>
 #include <cstring>
+#include <limits>
 
 namespace gyro::testing {
 namespace {
@@ -316,7 +317,8 @@ bool random_scene(SceneAccel accel, SplitMix64& rng, int count,
 // planes, in both acceleration modes: batch closest and any hits with model ids, normals
 // and barycentrics, and sphere, AABB and frustum queries; then after removes and moves
 // (a rebuild), then after moves alone (a refit under the BVH).
-uint64_t scene_models() {
+// A box and a sphere mesh, made once (empty if either fails).
+const std::vector<std::shared_ptr<const TriangleMesh>>& scene_meshes() {
   static const std::vector<std::shared_ptr<const TriangleMesh>> meshes = [] {
     std::vector<std::shared_ptr<const TriangleMesh>> out;
     for (const MeshData& m : {make_box_mesh({1.0f, 0.5f, 2.0f}), make_sphere_mesh(1.5f, 8, 12)}) {
@@ -326,6 +328,11 @@ uint64_t scene_models() {
     }
     return out;
   }();
+  return meshes;
+}
+
+uint64_t scene_models() {
+  const std::vector<std::shared_ptr<const TriangleMesh>>& meshes = scene_meshes();
   if (meshes.size() != 2) return 0;
   static const RaySet rays = random_rays(41, 3000, 80.0, -40.0);
   detail::StateHasher h;
@@ -389,6 +396,103 @@ uint64_t scene_models() {
         }
       }
     }
+  }
+  return h.digest();
+}
+
+// Spawning and despawning under the BVH: 3,000 root models (no parents: adds and removes
+// keep the tree, detaching and attaching leaves, BvhRefit) through frames of removes, adds
+// and moves, one of them moving every model (placed in parallel chunks, refit in parallel
+// subtrees), one adding a model that is unplaced and a plane. Closest hits, the model an
+// any hit names (it follows the tree), and the tree's counts and cost after every frame.
+uint64_t scene_spawn() {
+  const std::vector<std::shared_ptr<const TriangleMesh>>& meshes = scene_meshes();
+  if (meshes.size() != 2) return 0;
+  static const RaySet rays = random_rays(51, 2000, 80.0, -40.0);
+  detail::StateHasher h;
+  Scene scene;
+  SplitMix64 rng(52);
+  std::vector<ModelId> ids;
+  const auto add = [&](int i) {
+    ModelDef d;
+    d.shape = ModelShape(i % 3);
+    d.radius = float(0.2 + 2 * rng.u());
+    d.half_extents = {float(0.1 + rng.u()), float(0.1 + 2 * rng.u()), float(0.1 + rng.u())};
+    if (d.shape == ModelShape::mesh) d.mesh = meshes[std::size_t(i) % meshes.size()];
+    d.transform.position = {float(60 * rng.u() - 30), float(60 * rng.u() - 30), float(60 * rng.u() - 30)};
+    d.transform.rotation = from_axis_angle({float(rng.u() - 0.5), float(rng.u()), float(rng.u() - 0.5)}, float(6 * rng.u()));
+    ModelId id;
+    if (scene.add_model(d, &id) != Status::ok) return false;
+    ids.push_back(id);
+    return true;
+  };
+  int made = 0;
+  for (; made < 3000; ++made)
+    if (!add(made)) return 0;
+  const auto remove = [&](std::size_t count) {
+    for (std::size_t k = 0; k < count; ++k) {
+      const std::size_t at = std::size_t(rng.next() % ids.size());
+      if (scene.remove_model(ids[at]) != Status::ok) return false;
+      ids[at] = ids.back();
+      ids.pop_back();
+    }
+    return true;
+  };
+  const auto move = [&](std::size_t count) {
+    for (std::size_t k = 0; k < count; ++k) {
+      const ModelId id = count >= ids.size() ? ids[k % ids.size()] : ids[std::size_t(rng.next() % ids.size())];
+      ModelInfo info;
+      if (scene.model(id, &info) != Status::ok) return false;
+      ModelTransform t = info.def.transform;
+      t.position = t.position + vec3{float(rng.u() - 0.5), float(rng.u() - 0.5), float(rng.u() - 0.5)};
+      if (scene.set_transform(id, t) != Status::ok) return false;
+    }
+    return true;
+  };
+  for (int frame = 0; frame < 5; ++frame) {
+    if (frame > 0 && !remove(frame == 2 ? 400 : 40)) return 0;
+    for (int k = 0; k < (frame == 2 ? 300 : 50); ++k)
+      if (!add(made++)) return 0;
+    if (frame == 2) {
+      ModelDef far;
+      far.transform.position = {std::numeric_limits<float>::max(), 0.0f, 0.0f};  // unplaced
+      ModelDef plane;
+      plane.shape = ModelShape::plane;
+      plane.plane = {{0.0f, 1.0f, 0.0f}, -35.0f};
+      ModelId a, b;
+      if (scene.add_model(far, &a) != Status::ok || scene.add_model(plane, &b) != Status::ok) return 0;
+      ids.push_back(a), ids.push_back(b);
+    }
+    if (frame == 3) {
+      // Every model moved: the transforms read first (a model() between the moves would place
+      // them one by one), then set.
+      std::vector<std::pair<ModelId, ModelTransform>> to;
+      for (ModelId id : ids) {
+        ModelInfo info;
+        if (scene.model(id, &info) != Status::ok) return 0;
+        ModelTransform t = info.def.transform;
+        t.position = t.position + vec3{float(rng.u() - 0.5), float(rng.u() - 0.5), float(rng.u() - 0.5)};
+        to.push_back({id, t});
+      }
+      for (const auto& [id, t] : to)
+        if (scene.set_transform(id, t) != Status::ok) return 0;
+    } else if (!move(30)) {
+      return 0;
+    }
+    std::vector<float> t(rays.size());
+    std::vector<ModelId> model(rays.size());
+    std::vector<int32_t> prim(rays.size());
+    if (raycast_closest(scene, rays.view(), rays.size(), SceneHitsOut{t.data(), model.data(), prim.data()}) != Status::ok)
+      return 0;
+    h.add_floats(t);
+    for (std::size_t i = 0; i < rays.size(); ++i) h.add_u32(model[i].index), h.add_u32(uint32_t(prim[i]));
+    if (raycast_any(scene, rays.view(), rays.size(), SceneHitsOut{t.data(), model.data(), prim.data()}) != Status::ok)
+      return 0;
+    for (std::size_t i = 0; i < rays.size(); ++i) h.add_u32(model[i].index);
+    const SceneStats st = scene.stats();
+    for (std::size_t v : {st.models, st.tree_models, st.planes, st.builds, st.refits, st.nodes, st.leaves, st.max_depth})
+      h.add_u32(uint32_t(v));
+    h.add_u64(std::bit_cast<uint64_t>(st.sah_cost));
   }
   return h.digest();
 }
@@ -987,6 +1091,7 @@ const DetScene kScenes[] = {
     {"camera_frustum", scene_camera_frustum, 0x246ff5bf8a6a766cull},
     {"scene_models", scene_models, 0xdba9aabb65c16b46ull},
     {"scene_layers", scene_layers, 0xd8ccdb8e79b20c3dull},
+    {"scene_spawn", scene_spawn, 0xd40067935242d5e0ull},
     {"rays_one_origin", scene_rays_one_origin, 0x4ee4f0393c05adbaull},
     {"mesh_slivers", scene_mesh_slivers, 0xa80aeab449555782ull},
 #endif
