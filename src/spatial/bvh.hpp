@@ -70,6 +70,25 @@ inline const float* bounds_row(const BvhNode8& node, std::ptrdiff_t offset) {
   return reinterpret_cast<const float*>(reinterpret_cast<const char*>(node.bounds) + offset);
 }
 
+/// Asks for every cache line of the node or leaf block `code` names (a leaf block's lines
+/// from `leaves`, of type Leaf) without a branch on which it is: rays taking turns visit
+/// nodes and leaves in no predictable order, and a branch here was mispredicted twice per R2
+/// ray (callgrind --branch-sim, a quarter of the walk's mispredictions). The address and
+/// the line offsets are selected by a mask; a leaf block shorter than a node asks for its
+/// last line again instead of a line past it.
+template <class Leaf> inline void prefetch_visit(const BvhNode8* nodes, const Leaf* leaves, uint32_t code) {
+  constexpr std::size_t kLine = 64, kNodeLines = sizeof(BvhNode8) / kLine;
+  constexpr std::size_t kLeafLast = (sizeof(Leaf) - 1) / kLine * kLine;
+  const uintptr_t leaf = uintptr_t(0) - uintptr_t(code >> 31);  // all ones for a leaf block
+  const uintptr_t index = code & ~kLeafBit;
+  const uintptr_t at = ((reinterpret_cast<uintptr_t>(nodes) + index * sizeof(BvhNode8)) & ~leaf) |
+                       ((reinterpret_cast<uintptr_t>(leaves) + index * sizeof(Leaf)) & leaf);
+  for (std::size_t k = 0; k < kNodeLines; ++k) {
+    const uintptr_t node_off = k * kLine, leaf_off = k * kLine < kLeafLast ? k * kLine : kLeafLast;
+    __builtin_prefetch(reinterpret_cast<const char*>(at + ((node_off & ~leaf) | (leaf_off & leaf))));
+  }
+}
+
 // Trivial, so a build's resize() writes nothing and its parallel fill, which writes every
 // byte of every node and leaf block (padding included: there is none), first-touches them.
 static_assert(std::is_trivially_default_constructible_v<BvhNode8> && sizeof(BvhNode8) == 256);

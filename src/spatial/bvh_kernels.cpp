@@ -112,14 +112,7 @@ inline Quad leaf_t(const BvhRaycastArgs& a, std::size_t i, const LeafRay& r, con
 // take turns: rays from one origin find their nodes in the cache, and there the prefetches
 // are only instructions.
 template <bool Turns> inline void prefetch(const Bvh8& bvh, uint32_t code) {
-  if constexpr (!Turns) return;
-  if (code & kLeafBit) {
-    const char* p = reinterpret_cast<const char*>(&bvh.leaves[code & ~kLeafBit]);
-    for (std::size_t line = 0; line < sizeof(BvhLeaf4); line += 64) __builtin_prefetch(p + line);
-  } else {
-    const char* p = reinterpret_cast<const char*>(&bvh.nodes[code]);
-    for (std::size_t line = 0; line < sizeof(BvhNode8); line += 64) __builtin_prefetch(p + line);
-  }
+  if constexpr (Turns) detail::prefetch_visit(bvh.nodes.data(), bvh.leaves.data(), code);
 }
 
 // One ray's walk, advanced one visit at a time so that several rays can take turns: a visit

@@ -90,11 +90,7 @@ inline void push(Walk& w, int& sp, const Entry& e) { w.stack_code[sp] = e.code, 
 // Only in a tree beyond the cache: in one the cache holds the prefetches are only
 // instructions (a tenth of the walk's, R1 on 10^4 spheres).
 template <bool Fetch> inline void prefetch(const SceneRaycastArgs& a, uint32_t code) {
-  if constexpr (!Fetch) return;
-  const char* p = code & kLeafBit ? reinterpret_cast<const char*>(&a.leaves[code & ~kLeafBit])
-                                  : reinterpret_cast<const char*>(&a.nodes[code]);
-  const std::size_t bytes = code & kLeafBit ? sizeof(SceneLeaf) : sizeof(BvhNode8);
-  for (std::size_t line = 0; line < bytes; line += 64) __builtin_prefetch(p + line);
+  if constexpr (Fetch) detail::prefetch_visit(a.nodes, a.leaves, code);
 }
 
 // The pad with the sign of a negative direction (neg = 1): o - pad is o + (-pad) to the bit,
