@@ -284,6 +284,24 @@ RaySet random_rays(uint64_t seed, int count, double scale, double offset) {
   return r;
 }
 
+// Model i of a random scene: a sphere, a box or an instance of `meshes` (in turn), of random
+// size, position in a 60-unit cube and rotation, unscaled and without a parent.
+ModelDef random_model(SplitMix64& rng, int i, const std::vector<std::shared_ptr<const TriangleMesh>>& meshes) {
+  ModelDef d;
+  d.shape = ModelShape(i % 3);
+  d.radius = float(0.2 + 2 * rng.u());
+  d.half_extents = {float(0.1 + rng.u()), float(0.1 + 2 * rng.u()), float(0.1 + rng.u())};
+  if (d.shape == ModelShape::mesh) d.mesh = meshes[std::size_t(i) % meshes.size()];
+  d.transform.position = {float(60 * rng.u() - 30), float(60 * rng.u() - 30), float(60 * rng.u() - 30)};
+  // Named first: a function's arguments are evaluated in no fixed order (g++ on x86-64 takes
+  // them right to left, clang and aarch64 g++ left to right), so draws inside one call would
+  // give each compiler another scene.
+  const vec3 axis{float(rng.u() - 0.5), float(rng.u()), float(rng.u() - 0.5)};
+  const float angle = float(6 * rng.u());
+  d.transform.rotation = from_axis_angle(axis, angle);
+  return d;
+}
+
 // A scene under `accel` of `count` spheres, boxes and instances of `meshes` (in turn),
 // scaled, rotated, every seventh the child of an earlier one, in a 60-unit cube; their ids
 // in ids.
@@ -295,15 +313,7 @@ bool random_scene(SceneAccel accel, SplitMix64& rng, int count,
   scene = Scene(settings);
   ids.clear();
   for (int i = 0; i < count; ++i) {
-    ModelDef d;
-    d.shape = ModelShape(i % 3);
-    d.radius = float(0.2 + 2 * rng.u());
-    d.half_extents = {float(0.1 + rng.u()), float(0.1 + 2 * rng.u()), float(0.1 + rng.u())};
-    if (d.shape == ModelShape::mesh) d.mesh = meshes[std::size_t(i) % meshes.size()];
-    d.transform.position = {float(60 * rng.u() - 30), float(60 * rng.u() - 30), float(60 * rng.u() - 30)};
-    const vec3 axis{float(rng.u() - 0.5), float(rng.u()), float(rng.u() - 0.5)};
-    const float angle = float(6 * rng.u());
-    d.transform.rotation = from_axis_angle(axis, angle);
+    ModelDef d = random_model(rng, i, meshes);
     d.transform.scale = float(0.5 + rng.u());
     if (i % 7 == 6) d.parent = ids[std::size_t(rng.next() % ids.size())], d.transform.position = d.transform.position * 0.1f;
     ModelId id;
@@ -414,18 +424,7 @@ uint64_t scene_spawn() {
   SplitMix64 rng(52);
   std::vector<ModelId> ids;
   const auto add = [&](int i) {
-    ModelDef d;
-    d.shape = ModelShape(i % 3);
-    d.radius = float(0.2 + 2 * rng.u());
-    d.half_extents = {float(0.1 + rng.u()), float(0.1 + 2 * rng.u()), float(0.1 + rng.u())};
-    if (d.shape == ModelShape::mesh) d.mesh = meshes[std::size_t(i) % meshes.size()];
-    d.transform.position = {float(60 * rng.u() - 30), float(60 * rng.u() - 30), float(60 * rng.u() - 30)};
-    // Named first: a function's arguments are evaluated in no fixed order (g++ on x86-64 takes
-    // them right to left, clang and aarch64 g++ left to right), so draws inside one call
-    // would give each compiler another scene.
-    const vec3 axis{float(rng.u() - 0.5), float(rng.u()), float(rng.u() - 0.5)};
-    const float angle = float(6 * rng.u());
-    d.transform.rotation = from_axis_angle(axis, angle);
+    const ModelDef d = random_model(rng, i, meshes);
     ModelId id;
     if (scene.add_model(d, &id) != Status::ok) return false;
     ids.push_back(id);
